@@ -1,0 +1,161 @@
+// The gvdp command line: render, scenes, info (DESIGN.md "Command line contract").
+// Library code throws; this is the one place that turns an exception into a message and an
+// exit status: 2 for bad input, 1 for internal failures.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <vector>
+
+#include "gvdp/base/error.h"
+#include "gvdp/base/gpu.h"
+#include "gvdp/base/parallel.h"
+#include "gvdp/bench/sequence.h"
+#include "gvdp/io/stats.h"
+
+namespace gvdp {
+namespace {
+
+Vec3d parseVector(const std::string& text, const char* flag) {
+  Vec3d v{};
+  char tail = 0;
+  GVDP_INPUT_CHECK(std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) == 3,
+                   "bad ", flag, " '", text, "' (expected x,y,z)");
+  return v;
+}
+
+constexpr int UNSET = std::numeric_limits<int>::min();  // flag not given: use the default
+
+struct RenderFlags {
+  std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "direct";
+  std::string origin = "0,0,0", out = "out";
+  int frames = UNSET, width = UNSET, height = UNSET, levels = DEFAULT_LEVELS;
+  float fov = DEFAULT_FOV_DEGREES;
+};
+
+void addRenderFlags(CLI::App* cmd, RenderFlags& f) {
+  cmd->add_option("--scene", f.scene, "scene: " + sceneNames());
+  cmd->add_option("--movement", f.movement, "camera path: " + movementNames());
+  cmd->add_option("--frames", f.frames, "frames to render (default: 24 on the GPU, 6 on the CPU)");
+  cmd->add_option("--width", f.width, "image width (default: 1500 on the GPU, 160 on the CPU)");
+  cmd->add_option("--height", f.height, "image height (default: 1000 on the GPU, 100 on the CPU)");
+  cmd->add_option("--backend", f.backend, "cpu, cuda or auto (the GPU when there is one)");
+  cmd->add_option("--scheduler", f.scheduler, "direct");
+  cmd->add_option("--levels", f.levels, "clipmap levels (voxel size doubles per level)");
+  cmd->add_option("--fov", f.fov, "horizontal field of view, degrees");
+  cmd->add_option("--origin", f.origin, "x,y,z added to the scene's start position");
+  cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
+}
+
+SequenceOptions toOptions(const RenderFlags& f) {
+  SequenceOptions o;
+  o.scene = f.scene;
+  o.movement = parseMovement(f.movement);
+  bool gpu = f.backend == "auto" ? cudaDeviceAvailable() : parseBackend(f.backend) == Backend::Cuda;
+  o.scheduler.backend = gpu ? Backend::Cuda : Backend::Cpu;
+  o.scheduler.kind = parseScheduler(f.scheduler);
+  o.frames = f.frames != UNSET ? f.frames : (gpu ? 24 : 6);
+  o.width = f.width != UNSET ? f.width : (gpu ? 1500 : 160);
+  o.height = f.height != UNSET ? f.height : (gpu ? 1000 : 100);
+  o.levels = f.levels;
+  o.fovDegrees = f.fov;
+  o.origin = parseVector(f.origin, "--origin");
+  validate(o);
+  return o;
+}
+
+std::string prepareOutDir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  GVDP_INPUT_CHECK(!ec && std::filesystem::is_directory(dir), "cannot create output directory '",
+                   dir, "'", ec ? ": " + ec.message() : "");
+  return dir;
+}
+
+int runRender(const RenderFlags& flags) {
+  SequenceOptions o = toOptions(flags);
+  std::string dir = prepareOutDir(flags.out);
+  std::fprintf(stderr, "gvdp: %s, %s, %dx%d, %d frames, scheduler %s on %s\n", o.scene.c_str(),
+               std::string(movementName(o.movement)).c_str(), o.width, o.height, o.frames,
+               std::string(schedulerName(o.scheduler.kind)).c_str(),
+               o.scheduler.backend == Backend::Cuda ? cudaDeviceSummary().c_str() : "cpu");
+  std::vector<FrameStats> frames;
+  renderSequence(o, [&](const Image& image, const FrameStats& s) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
+    writePng(image, dir + name);
+    frames.push_back(s);
+    std::printf("frame %4d  %9.2f ms  %8.1f FPS  unfinished %lld\n", s.index, s.ms,
+                1000.0 / std::max(s.ms, 1e-6), static_cast<long long>(s.unfinishedPixels));
+    std::fflush(stdout);
+  });
+  writeStatsJson(dir + "/stats.json", o, frames);
+  double total = 0.0;
+  for (const FrameStats& s : frames) total += s.ms;
+  double mean = total / static_cast<double>(frames.size());
+  std::printf("average %.2f ms per frame (%.1f FPS) over %zu frames; wrote %s/frame_*.png, %s/stats.json\n",
+              mean, 1000.0 / std::max(mean, 1e-6), frames.size(), dir.c_str(), dir.c_str());
+  return 0;
+}
+
+int runScenes() {
+  for (const SceneInfo& s : allScenes())
+    std::printf("%-16s %s\n%16s voxel size %.4g, start (%.1f, %.1f, %.1f), %.2f units/frame\n",
+                std::string(s.name).c_str(), std::string(s.description).c_str(), "",
+                s.params.voxelSize0, s.start.position.x, s.start.position.y, s.start.position.z,
+                s.speed);
+  return 0;
+}
+
+int runInfo() {
+  std::printf("gvdp %s\n", GVDP_VERSION);
+  std::printf("cuda backend: %s\n", cudaBuilt() ? "built (sm_" GVDP_CUDA_ARCHS ")" : "not built");
+  std::printf("devices: %s\n", cudaDeviceSummary().c_str());
+  std::printf("cpu threads: %d\n", ThreadPool::global().size());
+  std::printf("scenes: %s\nmovements: %s\n", sceneNames().c_str(), movementNames().c_str());
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"gvdp: GigaVoxels DP, walkthroughs of large procedural voxel worlds"};
+  app.require_subcommand(1);
+  RenderFlags render;
+  CLI::App* renderCmd = app.add_subcommand("render", "render a camera path to PNG frames");
+  addRenderFlags(renderCmd, render);
+  CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes");
+  CLI::App* infoCmd = app.add_subcommand("info", "build, devices and defaults");
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string command = argv[1];
+    GVDP_INPUT_CHECK(command == "render" || command == "scenes" || command == "info",
+                     "unknown command '", command, "' (commands: render, scenes, info)");
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    throw InputError(e.what());
+  }
+  if (renderCmd->parsed()) return runRender(render);
+  if (scenesCmd->parsed()) return runScenes();
+  if (infoCmd->parsed()) return runInfo();
+  return 2;
+}
+
+}  // namespace
+}  // namespace gvdp
+
+int main(int argc, char** argv) {
+  try {
+    return gvdp::run(argc, argv);
+  } catch (const gvdp::InputError& e) {
+    std::fprintf(stderr, "gvdp: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gvdp: internal error: %s\n", e.what());
+    return 1;
+  }
+}

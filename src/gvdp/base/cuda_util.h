@@ -1,0 +1,77 @@
+// CUDA helpers for host code of the CUDA backend: error checks that throw with file:line, and
+// one RAII owner of device memory (STYLE.md 5). Included only by CUDA-enabled sources.
+#pragma once
+
+#include <cuda_runtime_api.h>
+
+#include <cstddef>
+#include <utility>
+
+#include "gvdp/base/error.h"
+
+#define GVDP_CUDA_CHECK(call)                                                                   \
+  do {                                                                                          \
+    cudaError_t gvdpErr_ = (call);                                                              \
+    if (gvdpErr_ != cudaSuccess)                                                                \
+      throw ::gvdp::Error(::gvdp::detail::concat(__FILE__, ":", __LINE__, ": " #call " failed: ", \
+                                                 cudaGetErrorString(gvdpErr_)));                \
+  } while (0)
+
+namespace gvdp {
+
+template <class T>
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  explicit DeviceBuffer(size_t count) : count_(count) {
+    if (count) GVDP_CUDA_CHECK(cudaMalloc(reinterpret_cast<void**>(&ptr_), count * sizeof(T)));
+  }
+  ~DeviceBuffer() {
+    if (ptr_) cudaFree(ptr_);
+  }
+  DeviceBuffer(DeviceBuffer&& o) noexcept
+      : ptr_(std::exchange(o.ptr_, nullptr)), count_(std::exchange(o.count_, 0)) {}
+  DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
+    std::swap(ptr_, o.ptr_);
+    std::swap(count_, o.count_);
+    return *this;
+  }
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+
+  T* data() const { return ptr_; }
+  size_t size() const { return count_; }
+  size_t bytes() const { return count_ * sizeof(T); }
+
+ private:
+  T* ptr_ = nullptr;
+  size_t count_ = 0;
+};
+
+// CUDA events timing a region of a stream, in milliseconds.
+class GpuTimer {
+ public:
+  GpuTimer() {
+    GVDP_CUDA_CHECK(cudaEventCreate(&start_));
+    GVDP_CUDA_CHECK(cudaEventCreate(&stop_));
+  }
+  ~GpuTimer() {
+    cudaEventDestroy(start_);
+    cudaEventDestroy(stop_);
+  }
+  GpuTimer(const GpuTimer&) = delete;
+  GpuTimer& operator=(const GpuTimer&) = delete;
+  void start(cudaStream_t s = nullptr) { GVDP_CUDA_CHECK(cudaEventRecord(start_, s)); }
+  void stop(cudaStream_t s = nullptr) { GVDP_CUDA_CHECK(cudaEventRecord(stop_, s)); }
+  float ms() {
+    GVDP_CUDA_CHECK(cudaEventSynchronize(stop_));
+    float ms = 0.0f;
+    GVDP_CUDA_CHECK(cudaEventElapsedTime(&ms, start_, stop_));
+    return ms;
+  }
+
+ private:
+  cudaEvent_t start_{}, stop_{};
+};
+
+}  // namespace gvdp

@@ -1,0 +1,34 @@
+// Host/device attributes and project-wide constants.
+// GVDP_HD marks the one source shared by the CPU backend (thread pool) and the CUDA backend
+// (kernels in .cu files); it expands to nothing when the translation unit is not compiled by nvcc.
+#pragma once
+
+#include <cstdint>
+
+#if defined(__CUDACC__)
+#define GVDP_HD __host__ __device__
+#define GVDP_DEVICE __device__
+#define GVDP_INLINE __forceinline__
+#else
+#define GVDP_HD
+#define GVDP_DEVICE
+#define GVDP_INLINE inline
+#endif
+
+#if defined(__CUDA_ARCH__)
+#define GVDP_IS_GPU_CODE 1
+#else
+#define GVDP_IS_GPU_CODE 0
+#endif
+
+namespace gvdp {
+
+// Paper 3.2: bricks of 8^3 voxels, stored with a one-voxel border (10^3 samples) so that
+// trilinear filtering is seamless across brick edges.
+constexpr int BRICK_WIDTH = 8;
+constexpr int BRICK_SAMPLES = BRICK_WIDTH + 2;
+constexpr int BRICK_SAMPLE_COUNT = BRICK_SAMPLES * BRICK_SAMPLES * BRICK_SAMPLES;
+constexpr int MAX_LEVELS = 16;
+constexpr int DEFAULT_LEVELS = 8;
+
+}  // namespace gvdp

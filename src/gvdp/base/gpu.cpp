@@ -1,0 +1,38 @@
+#include "gvdp/base/gpu.h"
+
+#if GVDP_HAS_CUDA
+#include <cuda_runtime_api.h>
+#endif
+
+#include <sstream>
+
+namespace gvdp {
+
+#if GVDP_HAS_CUDA
+bool cudaBuilt() { return true; }
+
+bool cudaDeviceAvailable() {
+  int count = 0;
+  return cudaGetDeviceCount(&count) == cudaSuccess && count > 0;
+}
+
+std::string cudaDeviceSummary() {
+  int count = 0;
+  cudaError_t e = cudaGetDeviceCount(&count);
+  if (e != cudaSuccess) return std::string("no CUDA device (") + cudaGetErrorString(e) + ")";
+  std::ostringstream s;
+  for (int i = 0; i < count; ++i) {
+    cudaDeviceProp p{};
+    cudaGetDeviceProperties(&p, i);
+    s << (i ? "\n" : "") << "cuda:" << i << " " << p.name << ", sm_" << p.major << p.minor << ", "
+      << p.multiProcessorCount << " SMs, " << (p.totalGlobalMem >> 20) << " MiB";
+  }
+  return s.str();
+}
+#else
+bool cudaBuilt() { return false; }
+bool cudaDeviceAvailable() { return false; }
+std::string cudaDeviceSummary() { return "this gvdp was built without CUDA"; }
+#endif
+
+}  // namespace gvdp

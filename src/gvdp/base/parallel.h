@@ -1,0 +1,55 @@
+// CPU backend of ParallelFor (pbrt-v4 style): a fixed pool of worker threads that runs
+// fn(i) for i in [0, n) in chunks pulled from an atomic counter. The caller thread works too,
+// so a pool of one thread runs everything inline. The CUDA backend's twin is in parallel.cuh.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace gvdp {
+
+class ThreadPool {
+ public:
+  explicit ThreadPool(int threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  int size() const { return static_cast<int>(workers_.size()) + 1; }
+
+  // Runs body(begin, end, worker) over [0, n) in chunks of `chunk`; returns when all are done.
+  // worker is in [0, size()): 0 is the calling thread.
+  void run(int64_t n, int64_t chunk, const std::function<void(int64_t, int64_t, int)>& body);
+
+  // The process-wide pool, sized from GVDP_THREADS or the hardware concurrency.
+  static ThreadPool& global();
+
+ private:
+  void workerLoop(int worker);
+  void drain(int worker);
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void(int64_t, int64_t, int)>* body_ = nullptr;
+  int64_t n_ = 0, chunk_ = 1;
+  std::atomic<int64_t> next_{0};
+  int active_ = 0;
+  uint64_t generation_ = 0;
+  bool stop_ = false;
+};
+
+// fn(i) for every i in [0, n) on the global pool.
+template <class F>
+void parallelFor(int64_t n, F&& fn, int64_t chunk = 64) {
+  ThreadPool::global().run(n, chunk, [&](int64_t b, int64_t e, int) {
+    for (int64_t i = b; i < e; ++i) fn(i);
+  });
+}
+
+}  // namespace gvdp

@@ -1,0 +1,22 @@
+// The five camera movements of the paper's benchmark (4.1), deterministic in the frame index:
+// walkthrough (forward with gentle turns and bobbing), forward, backward, sideways, spinning.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "gvdp/render/camera.h"
+
+namespace gvdp {
+
+enum class Movement { Walkthrough, Forward, Backward, Sideways, Spinning };
+constexpr int MOVEMENT_COUNT = 5;
+
+std::string_view movementName(Movement m);
+Movement parseMovement(std::string_view name);  // throws InputError
+std::string movementNames();
+
+// Pose at `frame` for a path starting at `start`, moving `speed` world units per frame.
+CameraPose cameraAt(Movement m, const CameraPose& start, float speed, int frame);
+
+}  // namespace gvdp

@@ -1,0 +1,47 @@
+#include "gvdp/bench/sequence.h"
+
+#include "gvdp/base/error.h"
+
+namespace gvdp {
+
+void validate(const SequenceOptions& o) {
+  findScene(o.scene);
+  GVDP_INPUT_CHECK(o.width >= 8 && o.width <= 16384, "bad --width ", o.width,
+                   " (expected 8..16384)");
+  GVDP_INPUT_CHECK(o.height >= 8 && o.height <= 16384, "bad --height ", o.height,
+                   " (expected 8..16384)");
+  GVDP_INPUT_CHECK(static_cast<int64_t>(o.width) * o.height <= 64ll << 20, "bad size ", o.width,
+                   "x", o.height, " (at most 64 Mpixels)");
+  GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 1000000, "bad --frames ", o.frames,
+                   " (expected 1..1000000)");
+  GVDP_INPUT_CHECK(o.levels >= 1 && o.levels <= MAX_LEVELS, "bad --levels ", o.levels,
+                   " (expected 1..", MAX_LEVELS, ")");
+  GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
+                   " (expected 1..150 degrees)");
+  const double LIMIT = 1e8;  // int32 brick coordinates at level 0 hold about 2.7e8 units
+  GVDP_INPUT_CHECK(std::abs(o.origin.x) < LIMIT && std::abs(o.origin.y) < LIMIT &&
+                       std::abs(o.origin.z) < LIMIT,
+                   "bad --origin ", o.origin.x, ",", o.origin.y, ",", o.origin.z,
+                   " (each coordinate within 1e8)");
+}
+
+FrameSetup frameOf(const SequenceOptions& o, int frame) {
+  const SceneInfo& scene = findScene(o.scene);
+  CameraPose start = scene.start;
+  start.position = start.position + o.origin;
+  CameraPose pose = cameraAt(o.movement, start, scene.speed, frame);
+  return makeFrame(pose, scene.params, o.width, o.height, o.levels, frame, o.fovDegrees);
+}
+
+void renderSequence(const SequenceOptions& o,
+                    const std::function<void(const Image&, const FrameStats&)>& onFrame) {
+  validate(o);
+  std::unique_ptr<Scheduler> scheduler = makeScheduler(o.scheduler);
+  Image image;
+  for (int f = 0; f < o.frames; ++f) {
+    FrameStats stats = scheduler->render(frameOf(o, f), image);
+    onFrame(image, stats);
+  }
+}
+
+}  // namespace gvdp

@@ -1,0 +1,34 @@
+// A frame sequence: a scene, a camera movement and a scheduler, rendered frame by frame. The
+// `render` command, the tests and the benchmark all go through here.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "gvdp/bench/paths.h"
+#include "gvdp/sched/scheduler.h"
+#include "gvdp/world/registry.h"
+
+namespace gvdp {
+
+struct SequenceOptions {
+  std::string scene = "perlin";
+  Movement movement = Movement::Walkthrough;
+  int frames = 8;
+  int width = 160, height = 100;
+  int levels = DEFAULT_LEVELS;
+  float fovDegrees = DEFAULT_FOV_DEGREES;
+  Vec3d origin{0, 0, 0};  // added to the scene's start position
+  SchedulerOptions scheduler;
+};
+
+// Throws InputError naming the first bad value.
+void validate(const SequenceOptions& options);
+
+FrameSetup frameOf(const SequenceOptions& options, int frame);
+
+// Renders every frame in order; onFrame sees each image and its stats.
+void renderSequence(const SequenceOptions& options,
+                    const std::function<void(const Image&, const FrameStats&)>& onFrame);
+
+}  // namespace gvdp

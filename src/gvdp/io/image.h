@@ -1,0 +1,24 @@
+// RGBA8 images on the host: PNG write and read (stb), and PSNR for comparing renders.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gvdp {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<uint32_t> pixels;  // RGBA8, bytes r, g, b, a in memory order
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * h, 0u) {}
+};
+
+void writePng(const Image& image, const std::string& path);  // throws InputError if unwritable
+Image readPng(const std::string& path);                      // throws InputError
+
+// Peak signal-to-noise ratio over the RGB channels, in dB (infinity when identical).
+double psnr(const Image& a, const Image& b);
+
+}  // namespace gvdp

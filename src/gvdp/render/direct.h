@@ -1,0 +1,37 @@
+// The reference renderer's per-pixel body (DESIGN.md "direct"): no cache; every sample
+// evaluates the producer at the 8 voxel centres around it, quantises them to RGBA8 exactly as a
+// brick would store them, and interpolates with the shared trilinear(). Every brick counts as
+// resident, so the samples are those the cache would take, without its empty-space skipping
+// (skipping is exact because producers are conservative).
+#pragma once
+
+#include "gvdp/render/frame.h"
+#include "gvdp/render/march.h"
+#include "gvdp/render/shade.h"
+
+namespace gvdp {
+
+struct DirectAccess {
+  const FrameSetup& frame;
+
+  GVDP_HD BrickLookup lookup(int, Vec3i) const { return {BrickState::Resident, 0u}; }
+  GVDP_HD Vec4f sample(int level, Vec3i, const BrickLookup&, Vec3f v) const {
+    double vs = frame.lod.voxelSize(level);
+    Vec3d o = frame.localOrigin;
+    float fvs = static_cast<float>(vs);
+    return trilinear(v, [&](int x, int y, int z) {
+      Vec3d centre{o.x + (x + 0.5) * vs, o.y + (y + 0.5) * vs, o.z + (z + 0.5) * vs};
+      return produceVoxel(frame.scene, centre, fvs).rgba;
+    });
+  }
+};
+
+GVDP_HD GVDP_INLINE Rgba8 renderDirectPixel(const FrameSetup& frame, int pixel) {
+  Ray ray = frame.primaryRay(pixel % frame.width, pixel / frame.width);
+  RayState state = initialRayState();
+  DirectAccess access{frame};
+  march(ray, frame.lod, state, access);
+  return resolvePixel(state.colour, ray.d);
+}
+
+}  // namespace gvdp

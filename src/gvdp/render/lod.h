@@ -1,0 +1,51 @@
+// Level of detail from ray cones (paper 3.1, DESIGN.md "Rendering"). Level L has voxel size
+// v0 * 2^L and serves the distances where the cone footprint t * pixelAngle lies in
+// (v(L-1), v(L)], so that a voxel is never smaller than a pixel. Samples are a lattice of
+// one-voxel steps per level, restarted at each level's start: sample k of level L sits at
+// t = start(L) + (k + 1/2) v(L). Sample positions are thus a function of the ray alone, which
+// makes cached and direct renders comparable sample by sample.
+#pragma once
+
+#include "gvdp/base/defs.h"
+#include "gvdp/base/vecmath.h"
+
+namespace gvdp {
+
+struct Lod {
+  float voxelSize0;  // v0
+  float pixelAngle;  // cone spread per unit distance (pixel footprint at t = 1)
+  int levels;
+
+  GVDP_HD float voxelSize(int level) const { return ldexpf(voxelSize0, level); }
+  GVDP_HD float levelStart(int level) const {
+    return level == 0 ? 0.0f : voxelSize(level - 1) / pixelAngle;
+  }
+  GVDP_HD float levelEnd(int level) const { return voxelSize(level) / pixelAngle; }
+  GVDP_HD float sampleT(int level, int step) const {
+    return levelStart(level) + (static_cast<float>(step) + 0.5f) * voxelSize(level);
+  }
+  // The first lattice step of `level` at or after distance t.
+  GVDP_HD int firstStepAtOrAfter(int level, float t) const {
+    float k = ceilf((t - levelStart(level)) / voxelSize(level) - 0.5f);
+    return k > 0.0f ? static_cast<int>(k) : 0;
+  }
+  // The level whose distance range holds t (levels when beyond the last one).
+  GVDP_HD int levelAt(float t) const {
+    int level = 0;
+    while (level < levels && t >= levelEnd(level)) ++level;
+    return level;
+  }
+  // Farthest distance any sample can reach.
+  GVDP_HD float farDistance() const { return levelEnd(levels - 1); }
+};
+
+// Clipmap width in bricks (paper 3.2): the window of level L must hold every sample of that
+// level, which lies within levelEnd(L) + v(L) = v(L) (1/pixelAngle + 1) of the eye; the eye's
+// brick is centred, so (W/2 - 1) bricks of 8 voxels must cover it. For 1500x1000 at 60 degrees
+// this gives 328, close to the paper's 300.
+inline int clipmapWidthFor(float pixelAngle) {
+  int halfBricks = static_cast<int>(ceilf((1.0f / pixelAngle + 2.0f) / BRICK_WIDTH));
+  return 2 * halfBricks + 2;
+}
+
+}  // namespace gvdp

@@ -1,0 +1,34 @@
+// Trilinear interpolation of RGBA8 voxels stored at voxel centres. Both the direct renderer
+// (which evaluates the producer at the 8 centres) and the CPU brick pool call this one function
+// with their own fetch, so that on the CPU backend they agree bit for bit.
+#pragma once
+
+#include "gvdp/base/vecmath.h"
+#include "gvdp/world/voxel.h"
+
+namespace gvdp {
+
+GVDP_HD GVDP_INLINE Vec4f lerp4(Vec4f a, Vec4f b, float t) {
+  return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t,
+          a.w + (b.w - a.w) * t};
+}
+
+// v: position in voxel units of one level; fetch(ix, iy, iz) returns the voxel whose centre is
+// at (i + 1/2). Returns premultiplied RGBA in [0, 1].
+template <class Fetch>
+GVDP_HD GVDP_INLINE Vec4f trilinear(Vec3f v, Fetch&& fetch) {
+  Vec3f u{v.x - 0.5f, v.y - 0.5f, v.z - 0.5f};
+  Vec3i i = floorToInt(u);
+  Vec3f f{u.x - static_cast<float>(i.x), u.y - static_cast<float>(i.y),
+          u.z - static_cast<float>(i.z)};
+  Vec4f c00 = lerp4(unpackRgba8(fetch(i.x, i.y, i.z)), unpackRgba8(fetch(i.x + 1, i.y, i.z)), f.x);
+  Vec4f c10 = lerp4(unpackRgba8(fetch(i.x, i.y + 1, i.z)),
+                    unpackRgba8(fetch(i.x + 1, i.y + 1, i.z)), f.x);
+  Vec4f c01 = lerp4(unpackRgba8(fetch(i.x, i.y, i.z + 1)),
+                    unpackRgba8(fetch(i.x + 1, i.y, i.z + 1)), f.x);
+  Vec4f c11 = lerp4(unpackRgba8(fetch(i.x, i.y + 1, i.z + 1)),
+                    unpackRgba8(fetch(i.x + 1, i.y + 1, i.z + 1)), f.x);
+  return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
+}
+
+}  // namespace gvdp

@@ -1,0 +1,12 @@
+// Stand-ins for the CUDA schedulers in builds without CUDA (GVDP_CUDA=OFF); makeScheduler
+// refuses the cuda backend before reaching them.
+#include "gvdp/base/error.h"
+#include "gvdp/sched/direct.h"
+
+namespace gvdp {
+
+std::unique_ptr<Scheduler> makeDirectCuda() {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+}  // namespace gvdp

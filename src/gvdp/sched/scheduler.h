@@ -1,0 +1,45 @@
+// One interface for every scheduler (DESIGN.md "Schedulers"): render one frame of a sequence
+// into an RGBA8 image and report what it did. All schedulers render the same image on a backend
+// for the same frame sequence; `direct` (no cache) is the reference.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "gvdp/io/image.h"
+#include "gvdp/render/frame.h"
+
+namespace gvdp {
+
+enum class Backend { Cpu, Cuda };
+enum class SchedulerKind { Direct };
+
+std::string_view backendName(Backend b);
+Backend parseBackend(std::string_view name);  // "cpu" | "cuda"; throws InputError
+std::string_view schedulerName(SchedulerKind k);
+SchedulerKind parseScheduler(std::string_view name);  // throws InputError
+
+struct FrameStats {
+  int index = 0;
+  double ms = 0.0;  // GPU: CUDA events around the frame's work; CPU: wall clock
+  int64_t unfinishedPixels = 0;
+};
+
+struct SchedulerOptions {
+  Backend backend = Backend::Cpu;
+  SchedulerKind kind = SchedulerKind::Direct;
+};
+
+class Scheduler {
+ public:
+  virtual ~Scheduler() = default;
+  // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
+  virtual FrameStats render(const FrameSetup& frame, Image& out) = 0;
+};
+
+// Throws InputError when the backend is not available (no CUDA build or no device).
+std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options);
+
+}  // namespace gvdp

@@ -1,0 +1,91 @@
+// 3D gradient noise (Perlin's improved noise, hashed lattice gradients, quintic fade) with its
+// analytic gradient, for producers that bake shading from the density gradient (DESIGN.md).
+// Lattice reduction happens in double precision so that a world a million units from the
+// origin is as detailed as at the origin; the rest is float.
+#pragma once
+
+#include "gvdp/base/vecmath.h"
+#include "gvdp/world/hash.h"
+
+namespace gvdp {
+
+// Bounds used by producers to stay conservative (tests/noise_test.cpp checks them on random
+// points): |noise| <= NOISE_MAX_ABS and |grad noise| <= NOISE_LIPSCHITZ per lattice unit.
+constexpr float NOISE_MAX_ABS = 1.05f;
+constexpr float NOISE_LIPSCHITZ = 3.5f;
+
+struct NoiseSample {
+  float value;
+  Vec3f grad;  // per lattice unit
+};
+
+GVDP_HD GVDP_INLINE Vec3f latticeGradient(int x, int y, int z, uint32_t seed) {
+  // The 12 cube-edge directions of improved noise (with 4 repeated to make 16).
+  switch (hash3(x, y, z, seed) & 15u) {
+    case 0: return {1, 1, 0};
+    case 1: return {-1, 1, 0};
+    case 2: return {1, -1, 0};
+    case 3: return {-1, -1, 0};
+    case 4: return {1, 0, 1};
+    case 5: return {-1, 0, 1};
+    case 6: return {1, 0, -1};
+    case 7: return {-1, 0, -1};
+    case 8: return {0, 1, 1};
+    case 9: return {0, -1, 1};
+    case 10: return {0, 1, -1};
+    case 11: return {0, -1, -1};
+    case 12: return {1, 1, 0};
+    case 13: return {-1, 1, 0};
+    case 14: return {0, -1, 1};
+    default: return {0, -1, -1};
+  }
+}
+
+// Noise at p (lattice units, double) with its gradient. Value roughly in [-1, 1].
+GVDP_HD GVDP_INLINE NoiseSample gradientNoise(Vec3d p, uint32_t seed) {
+  double fx = floor(p.x), fy = floor(p.y), fz = floor(p.z);
+  // Lattice coordinates wrap modulo 2^32 through int64: the hash only needs them distinct locally.
+  int ix = static_cast<int>(static_cast<long long>(fx));
+  int iy = static_cast<int>(static_cast<long long>(fy));
+  int iz = static_cast<int>(static_cast<long long>(fz));
+  Vec3f w{static_cast<float>(p.x - fx), static_cast<float>(p.y - fy), static_cast<float>(p.z - fz)};
+  Vec3f u{w.x * w.x * w.x * (w.x * (w.x * 6.0f - 15.0f) + 10.0f),
+          w.y * w.y * w.y * (w.y * (w.y * 6.0f - 15.0f) + 10.0f),
+          w.z * w.z * w.z * (w.z * (w.z * 6.0f - 15.0f) + 10.0f)};
+  Vec3f du{30.0f * w.x * w.x * (w.x * (w.x - 2.0f) + 1.0f),
+           30.0f * w.y * w.y * (w.y * (w.y - 2.0f) + 1.0f),
+           30.0f * w.z * w.z * (w.z * (w.z - 2.0f) + 1.0f)};
+
+  Vec3f ga = latticeGradient(ix, iy, iz, seed), gb = latticeGradient(ix + 1, iy, iz, seed);
+  Vec3f gc = latticeGradient(ix, iy + 1, iz, seed), gd = latticeGradient(ix + 1, iy + 1, iz, seed);
+  Vec3f ge = latticeGradient(ix, iy, iz + 1, seed), gf = latticeGradient(ix + 1, iy, iz + 1, seed);
+  Vec3f gg = latticeGradient(ix, iy + 1, iz + 1, seed);
+  Vec3f gh = latticeGradient(ix + 1, iy + 1, iz + 1, seed);
+
+  float va = dot(ga, w);
+  float vb = dot(gb, w - Vec3f{1, 0, 0});
+  float vc = dot(gc, w - Vec3f{0, 1, 0});
+  float vd = dot(gd, w - Vec3f{1, 1, 0});
+  float ve = dot(ge, w - Vec3f{0, 0, 1});
+  float vf = dot(gf, w - Vec3f{1, 0, 1});
+  float vg = dot(gg, w - Vec3f{0, 1, 1});
+  float vh = dot(gh, w - Vec3f{1, 1, 1});
+
+  float k1 = vb - va, k2 = vc - va, k3 = ve - va;
+  float k4 = va - vb - vc + vd, k5 = va - vc - ve + vg, k6 = va - vb - ve + vf;
+  float k7 = -va + vb + vc - vd + ve - vf - vg + vh;
+
+  NoiseSample s;
+  s.value = va + u.x * k1 + u.y * k2 + u.z * k3 + u.x * u.y * k4 + u.y * u.z * k5 + u.z * u.x * k6 +
+            u.x * u.y * u.z * k7;
+  Vec3f g = ga + (gb - ga) * u.x + (gc - ga) * u.y + (ge - ga) * u.z +
+            (ga - gb - gc + gd) * (u.x * u.y) + (ga - gc - ge + gg) * (u.y * u.z) +
+            (ga - gb - ge + gf) * (u.z * u.x) + (-ga + gb + gc - gd + ge - gf - gg + gh) * (u.x * u.y * u.z);
+  g.x += du.x * (k1 + u.y * k4 + u.z * k6 + u.y * u.z * k7);
+  g.y += du.y * (k2 + u.z * k5 + u.x * k4 + u.z * u.x * k7);
+  g.z += du.z * (k3 + u.x * k6 + u.y * k5 + u.x * u.y * k7);
+  s.grad = g;
+  return s;
+}
+
+}  // namespace gvdp

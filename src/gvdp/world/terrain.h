@@ -1,0 +1,111 @@
+// The two noise scenes of the paper (4.1): `perlin`, a density made of two 3D gradient-noise
+// layers over a height gradient (cliffs, arches, caves), and `fbm`, up to ten octaves whose count
+// follows the voxel size (fractal depth adapted to the LOD). Matter where density > 0.
+//
+// Conservativeness: with Lip a Lipschitz bound of the density d, -d/Lip is a lower bound of the
+// distance to matter; coverage uses -d/|grad d| (sharper) which is nonzero only where
+// -d/Lip < 0.5 voxel. For fbm the octaves a finer level adds are bounded by their amplitudes.
+#pragma once
+
+#include "gvdp/world/noise.h"
+#include "gvdp/world/voxel.h"
+
+namespace gvdp {
+
+struct DensitySample {
+  float d;
+  Vec3f grad;
+};
+
+GVDP_HD GVDP_INLINE Vec3d scaled(Vec3d p, double s) { return {p.x * s, p.y * s, p.z * s}; }
+
+// Shared shading of density fields: coverage from the gradient-estimated distance.
+GVDP_HD GVDP_INLINE float densityCoverage(const DensitySample& s, float voxelSize) {
+  return coverage(-s.d / fmaxf(length(s.grad), 1e-6f), voxelSize);
+}
+
+// --- perlin ---------------------------------------------------------------------------------
+constexpr float PERLIN_HEIGHT = 24.0f;
+constexpr float PERLIN_WAVE0 = 32.0f, PERLIN_WAVE1 = 9.0f, PERLIN_AMP1 = 0.4f;
+constexpr float PERLIN_LIPSCHITZ =
+    1.0f / PERLIN_HEIGHT + NOISE_LIPSCHITZ / PERLIN_WAVE0 + PERLIN_AMP1 * NOISE_LIPSCHITZ / PERLIN_WAVE1;
+
+GVDP_HD GVDP_INLINE DensitySample perlinDensity(Vec3d p, uint32_t seed) {
+  NoiseSample n0 = gradientNoise(scaled(p, 1.0 / PERLIN_WAVE0), seed);
+  NoiseSample n1 = gradientNoise(scaled(p, 1.0 / PERLIN_WAVE1), seed + 1);
+  float y = static_cast<float>(p.y);
+  DensitySample s;
+  s.d = -y / PERLIN_HEIGHT + n0.value + PERLIN_AMP1 * n1.value;
+  s.grad = Vec3f{0.0f, -1.0f / PERLIN_HEIGHT, 0.0f} + n0.grad * (1.0f / PERLIN_WAVE0) +
+           n1.grad * (PERLIN_AMP1 / PERLIN_WAVE1);
+  return s;
+}
+
+GVDP_HD GVDP_INLINE Vec3f rockAlbedo(float y, Vec3f normal) {
+  float strata = 0.5f + 0.5f * sinf(y * 0.9f + 0.3f * sinf(y * 0.13f));
+  Vec3f rock = lerp(Vec3f{0.42f, 0.33f, 0.25f}, Vec3f{0.62f, 0.52f, 0.40f}, strata);
+  Vec3f grass{0.27f, 0.45f, 0.17f};
+  return lerp(rock, grass, smoothstep(0.65f, 0.85f, normal.y));
+}
+
+GVDP_HD GVDP_INLINE VoxelSample producePerlin(Vec3d p, float voxelSize, uint32_t seed) {
+  DensitySample s = perlinDensity(p, seed);
+  bool empty = -s.d / PERLIN_LIPSCHITZ >= EMPTY_MARGIN_VOXELS * voxelSize;
+  float alpha = densityCoverage(s, voxelSize);
+  Vec3f normal = normalize(-s.grad);
+  return makeVoxel(rockAlbedo(static_cast<float>(p.y), normal), normal, alpha, empty);
+}
+
+// --- fbm --------------------------------------------------------------------------------------
+constexpr int FBM_MAX_OCTAVES = 10;
+constexpr float FBM_HEIGHT = 48.0f, FBM_WAVE0 = 128.0f;
+
+// Octave o (wavelength FBM_WAVE0 / 2^o) is used while it spans at least 4 voxels.
+GVDP_HD GVDP_INLINE int fbmOctaves(float voxelSize) {
+  int n = 1;
+  while (n < FBM_MAX_OCTAVES && FBM_WAVE0 / static_cast<float>(1 << n) >= 4.0f * voxelSize) ++n;
+  return n;
+}
+// Each octave adds amplitude 2^-o and slope 2^-o * 2^o / WAVE0: the same Lipschitz term.
+GVDP_HD GVDP_INLINE float fbmLipschitz(int octaves) {
+  return 1.0f / FBM_HEIGHT + static_cast<float>(octaves) * NOISE_LIPSCHITZ / FBM_WAVE0;
+}
+GVDP_HD GVDP_INLINE float fbmRemainder(int octaves) {
+  float r = 0.0f;
+  for (int o = octaves; o < FBM_MAX_OCTAVES; ++o) r += NOISE_MAX_ABS / static_cast<float>(1 << o);
+  return r;
+}
+
+GVDP_HD GVDP_INLINE DensitySample fbmDensity(Vec3d p, int octaves, uint32_t seed) {
+  DensitySample s{-static_cast<float>(p.y) / FBM_HEIGHT, {0.0f, -1.0f / FBM_HEIGHT, 0.0f}};
+  double freq = 1.0 / FBM_WAVE0;
+  float amp = 1.0f;
+  for (int o = 0; o < octaves; ++o) {
+    NoiseSample n = gradientNoise(scaled(p, freq), seed + static_cast<uint32_t>(o));
+    s.d += amp * n.value;
+    s.grad = s.grad + n.grad * (amp * static_cast<float>(freq));
+    freq *= 2.0;
+    amp *= 0.5f;
+  }
+  return s;
+}
+
+GVDP_HD GVDP_INLINE VoxelSample produceFbm(Vec3d p, float voxelSize, uint32_t seed) {
+  int octaves = fbmOctaves(voxelSize);
+  DensitySample s = fbmDensity(p, octaves, seed);
+  // Empty only if no finer level (more octaves, smaller voxels) can put matter within one
+  // coarse voxel of this sample: slope over that distance + the octaves still to come + the
+  // finest coverage band (max over v <= V/2 of 0.5 v Lip(v), reached at v = V/2).
+  float reach = fbmLipschitz(octaves) * voxelSize + fbmRemainder(octaves) +
+                0.25f * voxelSize * fbmLipschitz(fbmOctaves(0.5f * voxelSize));
+  bool empty = s.d <= -1.5f * reach;
+  float alpha = densityCoverage(s, voxelSize);
+  Vec3f normal = normalize(-s.grad);
+  float y = static_cast<float>(p.y);
+  Vec3f albedo = rockAlbedo(y, normal);
+  float snow = smoothstep(28.0f, 40.0f, y + 8.0f * normal.y);
+  albedo = lerp(albedo, Vec3f{0.92f, 0.93f, 0.96f}, snow);
+  return makeVoxel(albedo, normal, alpha, empty);
+}
+
+}  // namespace gvdp

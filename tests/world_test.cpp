@@ -1,0 +1,142 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "gvdp/base/error.h"
+#include "gvdp/world/noise.h"
+#include "gvdp/world/registry.h"
+
+namespace gvdp {
+
+TEST(Noise, StaysWithinTheBoundsProducersRelyOn) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-5000.0, 5000.0);
+  float maxValue = 0.0f, maxSlope = 0.0f;
+  for (int i = 0; i < 300000; ++i) {
+    NoiseSample n = gradientNoise({u(rng), u(rng), u(rng)}, 7);
+    maxValue = std::max(maxValue, std::fabs(n.value));
+    maxSlope = std::max(maxSlope, length(n.grad));
+  }
+  EXPECT_LE(maxValue, NOISE_MAX_ABS);
+  EXPECT_LE(maxSlope, NOISE_LIPSCHITZ);
+  EXPECT_GT(maxValue, 0.5f);  // not degenerate
+}
+
+TEST(Noise, AnalyticGradientMatchesFiniteDifferences) {
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  for (int i = 0; i < 2000; ++i) {
+    Vec3d p{u(rng), u(rng), u(rng)};
+    const double h = 1e-3;
+    NoiseSample n = gradientNoise(p, 3);
+    float dx = (gradientNoise({p.x + h, p.y, p.z}, 3).value - gradientNoise({p.x - h, p.y, p.z}, 3).value) / (2 * h);
+    float dy = (gradientNoise({p.x, p.y + h, p.z}, 3).value - gradientNoise({p.x, p.y - h, p.z}, 3).value) / (2 * h);
+    EXPECT_NEAR(n.grad.x, dx, 2e-2f);
+    EXPECT_NEAR(n.grad.y, dy, 2e-2f);
+  }
+}
+
+TEST(Noise, IsSmoothAMillionUnitsFromTheOrigin) {
+  // Far from the origin, a small step still changes the value continuously and the gradient
+  // predicts it: the lattice reduction in double keeps full detail.
+  Vec3d p{1.0e6 + 0.3, 7.1, -2.0e6 + 0.9};
+  NoiseSample a = gradientNoise(p, 5);
+  const double h = 1e-3;
+  NoiseSample b = gradientNoise({p.x + h, p.y, p.z}, 5);
+  EXPECT_NEAR((b.value - a.value) / h, a.grad.x, 2e-2);
+  EXPECT_NE(a.value, b.value);
+}
+
+class SceneTest : public ::testing::TestWithParam<int> {
+ protected:
+  const SceneInfo& scene() const { return allScenes()[GetParam()]; }
+};
+
+TEST_P(SceneTest, ProducerIsDeterministic) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-30.0, 30.0);
+  for (int i = 0; i < 1000; ++i) {
+    Vec3d p = scene().start.position + Vec3d{u(rng), u(rng), u(rng)};
+    float vs = scene().params.voxelSize0 * static_cast<float>(1 << (i % 8));
+    VoxelSample a = produceVoxel(scene().params, p, vs), b = produceVoxel(scene().params, p, vs);
+    EXPECT_EQ(a.rgba, b.rgba);
+    EXPECT_EQ(a.empty, b.empty);
+    if (a.empty) {
+      EXPECT_EQ(a.rgba >> 24, 0u) << "an empty sample must be transparent";
+    }
+  }
+}
+
+TEST_P(SceneTest, HasMatterAndEmptySpaceNearTheStartCamera) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-12.0, 12.0);
+  int matter = 0, empty = 0;
+  const int N = 4000;
+  for (int i = 0; i < N; ++i) {
+    Vec3d p = scene().start.position + Vec3d{u(rng), u(rng), u(rng)};
+    VoxelSample s = produceVoxel(scene().params, p, scene().params.voxelSize0);
+    matter += (s.rgba >> 24) > 0;
+    empty += s.empty;
+  }
+  EXPECT_GT(matter, N / 50) << scene().name;
+  EXPECT_GT(empty, N / 10) << scene().name;
+  // The eye itself is in empty space.
+  EXPECT_TRUE(produceVoxel(scene().params, scene().start.position, scene().params.voxelSize0).empty)
+      << scene().name;
+}
+
+// DESIGN.md: a brick is EMPTY at a coarse level only if nothing is there at any finer level.
+// Per sample: an empty flag at voxel size V means zero opacity at every finer size v <= V/2
+// within 0.9 V (the farthest a finer sample of that brick can be from its nearest coarse one).
+TEST_P(SceneTest, EmptinessIsConservativeAcrossLevels) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int tested = 0;
+  for (int level = 1; level < 8; ++level) {
+    float V = scene().params.voxelSize0 * static_cast<float>(1 << level);
+    double spread = 40.0 * V;
+    int found = 0;
+    for (int i = 0; i < 40000 && found < 150; ++i) {
+      Vec3d c = scene().start.position + Vec3d{u(rng) * spread, u(rng) * spread, u(rng) * spread};
+      if (!produceVoxel(scene().params, c, V).empty) continue;
+      // Only coarse samples near matter make the test bite: look for a sample with matter
+      // within 16 voxels.
+      bool nearMatter = false;
+      for (int k = 0; k < 8 && !nearMatter; ++k) {
+        Vec3d q = c + Vec3d{u(rng), u(rng), u(rng)} * (16.0 * V);
+        nearMatter = (produceVoxel(scene().params, q, V).rgba >> 24) > 0;
+      }
+      if (!nearMatter) continue;
+      ++found;
+      for (int k = 0; k < 40; ++k) {
+        float v = V / static_cast<float>(2 << (k % 3));
+        Vec3d q = c + Vec3d{u(rng), u(rng), u(rng)} * (0.9 * V / std::sqrt(3.0));
+        ASSERT_EQ(produceVoxel(scene().params, q, v).rgba >> 24, 0u)
+            << scene().name << ": empty at voxel size " << V << " but matter at " << v;
+        ++tested;
+      }
+    }
+  }
+  EXPECT_GT(tested, 1000) << scene().name << ": too few coarse empty samples near matter";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, SceneTest, ::testing::Range(0, SCENE_COUNT),
+                         [](const auto& param) {
+                           std::string n(allScenes()[param.param].name);
+                           for (char& ch : n)
+                             if (ch == '-') ch = '_';
+                           return n;
+                         });
+
+TEST(Registry, FindsScenesByNameAndRejectsUnknownOnes) {
+  EXPECT_EQ(findScene("forest").params.kind, SceneKind::Forest);
+  EXPECT_EQ(allScenes().size(), 5u);
+  try {
+    findScene("moon");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'moon'"), std::string::npos);
+  }
+}
+
+}  // namespace gvdp
