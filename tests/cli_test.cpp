@@ -33,7 +33,8 @@ TEST(Cli, BadInputIsOneLineNamingTheValueWithStatus2) {
   expectInputError("render --backend cpu --origin 1,2" + out, "'1,2'");
   expectInputError("render --backend cpu --levels 40" + out, "--levels 40");
   expectInputError("render --backend cpu --bogus 3" + out, "--bogus");
-  expectInputError("render --backend cpu --out /proc/gvdp_cannot_be_here", "/proc/gvdp_cannot_be_here");
+  expectInputError("render --backend cpu --out /proc/gvdp_cannot_be_here",
+                   "/proc/gvdp_cannot_be_here");
   expectInputError("frobnicate", "frobnicate");
 }
 
@@ -41,7 +42,8 @@ TEST(Cli, RenderWritesFramesAndStats) {
   std::string dir = test::tempDir("cli_render");
   test::CommandResult r = test::runGvdp(
       "render --backend cpu --scheduler direct --scene aligned-spheres --width 32 --height 20 "
-      "--frames 2 --out " + dir);
+      "--frames 2 --out " +
+      dir);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0000.png"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0001.png"));

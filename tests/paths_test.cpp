@@ -46,6 +46,8 @@ TEST(Paths, MovementsMoveAsNamed) {
   EXPECT_GT(dist(w.position, START.position), 30.0);
 }
 
-TEST(Paths, RejectsUnknownMovement) { EXPECT_THROW(parseMovement("moonwalk"), InputError); }
+TEST(Paths, RejectsUnknownMovement) {
+  EXPECT_THROW(parseMovement("moonwalk"), InputError);
+}
 
 }  // namespace gvdp

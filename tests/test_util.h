@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "gvdp/base/gpu.h"
@@ -15,8 +16,15 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
+// The gvdp binary under test: $GVDP_BIN when set (binaries carried to another machine), else the
+// one built beside the tests.
+inline std::string gvdpBinary() {
+  const char* env = std::getenv("GVDP_BIN");
+  return env ? env : GVDP_BINARY;
+}
+
 inline CommandResult runGvdp(const std::string& args) {
-  std::string cmd = std::string(GVDP_BINARY) + " " + args + " 2>&1";
+  std::string cmd = gvdpBinary() + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];
@@ -31,7 +39,7 @@ inline std::string tempDir(const std::string& name) {
 
 }  // namespace gvdp::test
 
-#define GVDP_REQUIRE_GPU()                                                              \
-  do {                                                                                  \
+#define GVDP_REQUIRE_GPU()                                                           \
+  do {                                                                               \
     if (!::gvdp::cudaDeviceAvailable()) GTEST_SKIP() << ::gvdp::cudaDeviceSummary(); \
   } while (0)

@@ -29,8 +29,12 @@ TEST(Noise, AnalyticGradientMatchesFiniteDifferences) {
     Vec3d p{u(rng), u(rng), u(rng)};
     const double h = 1e-3;
     NoiseSample n = gradientNoise(p, 3);
-    float dx = (gradientNoise({p.x + h, p.y, p.z}, 3).value - gradientNoise({p.x - h, p.y, p.z}, 3).value) / (2 * h);
-    float dy = (gradientNoise({p.x, p.y + h, p.z}, 3).value - gradientNoise({p.x, p.y - h, p.z}, 3).value) / (2 * h);
+    float dx = (gradientNoise({p.x + h, p.y, p.z}, 3).value -
+                gradientNoise({p.x - h, p.y, p.z}, 3).value) /
+               (2 * h);
+    float dy = (gradientNoise({p.x, p.y + h, p.z}, 3).value -
+                gradientNoise({p.x, p.y - h, p.z}, 3).value) /
+               (2 * h);
     EXPECT_NEAR(n.grad.x, dx, 2e-2f);
     EXPECT_NEAR(n.grad.y, dy, 2e-2f);
   }

@@ -20,8 +20,8 @@ namespace {
 Vec3d parseVector(const std::string& text, const char* flag) {
   Vec3d v{};
   char tail = 0;
-  GVDP_INPUT_CHECK(std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) == 3,
-                   "bad ", flag, " '", text, "' (expected x,y,z)");
+  GVDP_INPUT_CHECK(std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) == 3, "bad ",
+                   flag, " '", text, "' (expected x,y,z)");
   return v;
 }
 
@@ -94,8 +94,9 @@ int runRender(const RenderFlags& flags) {
   double total = 0.0;
   for (const FrameStats& s : frames) total += s.ms;
   double mean = total / static_cast<double>(frames.size());
-  std::printf("average %.2f ms per frame (%.1f FPS) over %zu frames; wrote %s/frame_*.png, %s/stats.json\n",
-              mean, 1000.0 / std::max(mean, 1e-6), frames.size(), dir.c_str(), dir.c_str());
+  std::printf(
+      "average %.2f ms per frame (%.1f FPS) over %zu frames; wrote %s/frame_*.png, %s/stats.json\n",
+      mean, 1000.0 / std::max(mean, 1e-6), frames.size(), dir.c_str(), dir.c_str());
   return 0;
 }
 

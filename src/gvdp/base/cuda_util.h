@@ -9,12 +9,12 @@
 
 #include "gvdp/base/error.h"
 
-#define GVDP_CUDA_CHECK(call)                                                                   \
-  do {                                                                                          \
-    cudaError_t gvdpErr_ = (call);                                                              \
-    if (gvdpErr_ != cudaSuccess)                                                                \
-      throw ::gvdp::Error(::gvdp::detail::concat(__FILE__, ":", __LINE__, ": " #call " failed: ", \
-                                                 cudaGetErrorString(gvdpErr_)));                \
+#define GVDP_CUDA_CHECK(call)                                                              \
+  do {                                                                                     \
+    cudaError_t gvdpErr_ = (call);                                                         \
+    if (gvdpErr_ != cudaSuccess)                                                           \
+      throw ::gvdp::Error(::gvdp::detail::concat(                                          \
+          __FILE__, ":", __LINE__, ": " #call " failed: ", cudaGetErrorString(gvdpErr_))); \
   } while (0)
 
 namespace gvdp {

@@ -31,12 +31,11 @@ std::string concat(const Args&... args) {
 }  // namespace gvdp
 
 // Internal invariant: throws gvdp::Error with the location.
-#define GVDP_CHECK(cond, ...)                                                             \
-  do {                                                                                    \
-    if (!(cond))                                                                          \
-      throw ::gvdp::Error(::gvdp::detail::concat(__FILE__, ":", __LINE__, ": check '" #cond \
-                                                 "' failed: ",                            \
-                                                 ##__VA_ARGS__));                         \
+#define GVDP_CHECK(cond, ...)                                                                     \
+  do {                                                                                            \
+    if (!(cond))                                                                                  \
+      throw ::gvdp::Error(::gvdp::detail::concat(__FILE__, ":", __LINE__,                         \
+                                                 ": check '" #cond "' failed: ", ##__VA_ARGS__)); \
   } while (0)
 
 // Bad user input: throws gvdp::InputError with a one-line message.

@@ -9,7 +9,9 @@
 namespace gvdp {
 
 #if GVDP_HAS_CUDA
-bool cudaBuilt() { return true; }
+bool cudaBuilt() {
+  return true;
+}
 
 bool cudaDeviceAvailable() {
   int count = 0;
@@ -30,9 +32,15 @@ std::string cudaDeviceSummary() {
   return s.str();
 }
 #else
-bool cudaBuilt() { return false; }
-bool cudaDeviceAvailable() { return false; }
-std::string cudaDeviceSummary() { return "this gvdp was built without CUDA"; }
+bool cudaBuilt() {
+  return false;
+}
+bool cudaDeviceAvailable() {
+  return false;
+}
+std::string cudaDeviceSummary() {
+  return "this gvdp was built without CUDA";
+}
 #endif
 
 }  // namespace gvdp

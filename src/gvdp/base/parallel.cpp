@@ -8,7 +8,8 @@
 namespace gvdp {
 
 ThreadPool::ThreadPool(int threads) {
-  for (int w = 1; w < std::max(threads, 1); ++w) workers_.emplace_back([this, w] { workerLoop(w); });
+  for (int w = 1; w < std::max(threads, 1); ++w)
+    workers_.emplace_back([this, w] { workerLoop(w); });
 }
 
 ThreadPool::~ThreadPool() {

@@ -22,38 +22,74 @@ struct Vec4f {
 };
 
 // --- Vec3f ---------------------------------------------------------------------------------
-GVDP_HD GVDP_INLINE Vec3f operator+(Vec3f a, Vec3f b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-GVDP_HD GVDP_INLINE Vec3f operator-(Vec3f a, Vec3f b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-GVDP_HD GVDP_INLINE Vec3f operator-(Vec3f a) { return {-a.x, -a.y, -a.z}; }
-GVDP_HD GVDP_INLINE Vec3f operator*(Vec3f a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-GVDP_HD GVDP_INLINE Vec3f operator*(float s, Vec3f a) { return a * s; }
-GVDP_HD GVDP_INLINE Vec3f operator*(Vec3f a, Vec3f b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-GVDP_HD GVDP_INLINE Vec3f operator/(Vec3f a, float s) { return a * (1.0f / s); }
-GVDP_HD GVDP_INLINE float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+GVDP_HD GVDP_INLINE Vec3f operator+(Vec3f a, Vec3f b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+GVDP_HD GVDP_INLINE Vec3f operator-(Vec3f a, Vec3f b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+GVDP_HD GVDP_INLINE Vec3f operator-(Vec3f a) {
+  return {-a.x, -a.y, -a.z};
+}
+GVDP_HD GVDP_INLINE Vec3f operator*(Vec3f a, float s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+GVDP_HD GVDP_INLINE Vec3f operator*(float s, Vec3f a) {
+  return a * s;
+}
+GVDP_HD GVDP_INLINE Vec3f operator*(Vec3f a, Vec3f b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+GVDP_HD GVDP_INLINE Vec3f operator/(Vec3f a, float s) {
+  return a * (1.0f / s);
+}
+GVDP_HD GVDP_INLINE float dot(Vec3f a, Vec3f b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 GVDP_HD GVDP_INLINE Vec3f cross(Vec3f a, Vec3f b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-GVDP_HD GVDP_INLINE float length(Vec3f a) { return sqrtf(dot(a, a)); }
+GVDP_HD GVDP_INLINE float length(Vec3f a) {
+  return sqrtf(dot(a, a));
+}
 GVDP_HD GVDP_INLINE Vec3f normalize(Vec3f a) {
   float l = length(a);
   return l > 0.0f ? a / l : Vec3f{0.0f, 1.0f, 0.0f};
 }
-GVDP_HD GVDP_INLINE Vec3f abs(Vec3f a) { return {fabsf(a.x), fabsf(a.y), fabsf(a.z)}; }
-GVDP_HD GVDP_INLINE float maxComponent(Vec3f a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
-GVDP_HD GVDP_INLINE float minComponent(Vec3f a) { return fminf(a.x, fminf(a.y, a.z)); }
+GVDP_HD GVDP_INLINE Vec3f abs(Vec3f a) {
+  return {fabsf(a.x), fabsf(a.y), fabsf(a.z)};
+}
+GVDP_HD GVDP_INLINE float maxComponent(Vec3f a) {
+  return fmaxf(a.x, fmaxf(a.y, a.z));
+}
+GVDP_HD GVDP_INLINE float minComponent(Vec3f a) {
+  return fminf(a.x, fminf(a.y, a.z));
+}
 
 // --- Vec3d (world positions far from the origin) --------------------------------------------
-GVDP_HD GVDP_INLINE Vec3d operator+(Vec3d a, Vec3d b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-GVDP_HD GVDP_INLINE Vec3d operator-(Vec3d a, Vec3d b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-GVDP_HD GVDP_INLINE Vec3d operator*(Vec3d a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-GVDP_HD GVDP_INLINE Vec3d toDouble(Vec3f a) { return {a.x, a.y, a.z}; }
+GVDP_HD GVDP_INLINE Vec3d operator+(Vec3d a, Vec3d b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+GVDP_HD GVDP_INLINE Vec3d operator-(Vec3d a, Vec3d b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+GVDP_HD GVDP_INLINE Vec3d operator*(Vec3d a, double s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+GVDP_HD GVDP_INLINE Vec3d toDouble(Vec3f a) {
+  return {a.x, a.y, a.z};
+}
 GVDP_HD GVDP_INLINE Vec3f toFloat(Vec3d a) {
   return {static_cast<float>(a.x), static_cast<float>(a.y), static_cast<float>(a.z)};
 }
 
 // --- Vec3i ------------------------------------------------------------------------------------
-GVDP_HD GVDP_INLINE Vec3i operator+(Vec3i a, Vec3i b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-GVDP_HD GVDP_INLINE Vec3i operator-(Vec3i a, Vec3i b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+GVDP_HD GVDP_INLINE Vec3i operator+(Vec3i a, Vec3i b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+GVDP_HD GVDP_INLINE Vec3i operator-(Vec3i a, Vec3i b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 GVDP_HD GVDP_INLINE bool operator==(Vec3i a, Vec3i b) {
   return a.x == b.x && a.y == b.y && a.z == b.z;
 }
@@ -66,12 +102,20 @@ GVDP_HD GVDP_INLINE int floorDiv(int a, int b) {
   int q = a / b;
   return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
-GVDP_HD GVDP_INLINE int floorMod(int a, int b) { return a - floorDiv(a, b) * b; }
+GVDP_HD GVDP_INLINE int floorMod(int a, int b) {
+  return a - floorDiv(a, b) * b;
+}
 
 // --- scalars ------------------------------------------------------------------------------
-GVDP_HD GVDP_INLINE float clamp01(float v) { return fminf(fmaxf(v, 0.0f), 1.0f); }
-GVDP_HD GVDP_INLINE float lerp(float a, float b, float t) { return a + (b - a) * t; }
-GVDP_HD GVDP_INLINE Vec3f lerp(Vec3f a, Vec3f b, float t) { return a + (b - a) * t; }
+GVDP_HD GVDP_INLINE float clamp01(float v) {
+  return fminf(fmaxf(v, 0.0f), 1.0f);
+}
+GVDP_HD GVDP_INLINE float lerp(float a, float b, float t) {
+  return a + (b - a) * t;
+}
+GVDP_HD GVDP_INLINE Vec3f lerp(Vec3f a, Vec3f b, float t) {
+  return a + (b - a) * t;
+}
 GVDP_HD GVDP_INLINE float smoothstep(float e0, float e1, float x) {
   float t = clamp01((x - e0) / (e1 - e0));
   return t * t * (3.0f - 2.0f * t);

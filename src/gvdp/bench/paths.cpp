@@ -7,12 +7,16 @@
 
 namespace gvdp {
 namespace {
-constexpr std::array<std::string_view, MOVEMENT_COUNT> NAMES = {"walkthrough", "forward", "backward",
-                                                                "sideways", "spinning"};
-Vec3d horizontal(float yaw) { return {std::sin(yaw), 0.0, std::cos(yaw)}; }
+constexpr std::array<std::string_view, MOVEMENT_COUNT> NAMES = {"walkthrough", "forward",
+                                                                "backward", "sideways", "spinning"};
+Vec3d horizontal(float yaw) {
+  return {std::sin(yaw), 0.0, std::cos(yaw)};
+}
 }  // namespace
 
-std::string_view movementName(Movement m) { return NAMES[static_cast<int>(m)]; }
+std::string_view movementName(Movement m) {
+  return NAMES[static_cast<int>(m)];
+}
 
 std::string movementNames() {
   std::string s;
@@ -33,16 +37,25 @@ CameraPose cameraAt(Movement m, const CameraPose& start, float speed, int frame)
   Vec3d forward = horizontal(start.yaw);
   Vec3d right = {-forward.z, 0.0, forward.x};
   switch (m) {
-    case Movement::Forward: pose.position = start.position + forward * (s * f); break;
-    case Movement::Backward: pose.position = start.position - forward * (s * f); break;
-    case Movement::Sideways: pose.position = start.position + right * (s * f); break;
-    case Movement::Spinning: pose.yaw = start.yaw + static_cast<float>(f * 0.035); break;
+    case Movement::Forward:
+      pose.position = start.position + forward * (s * f);
+      break;
+    case Movement::Backward:
+      pose.position = start.position - forward * (s * f);
+      break;
+    case Movement::Sideways:
+      pose.position = start.position + right * (s * f);
+      break;
+    case Movement::Spinning:
+      pose.yaw = start.yaw + static_cast<float>(f * 0.035);
+      break;
     case Movement::Walkthrough: {
       // The heading drifts smoothly (yaw0 + A sin(W f)) and the position sums the unit steps
       // along it; the eye rises and falls a little.
       const double A = 0.45, W = 0.021;
       Vec3d p = start.position;
-      for (int i = 0; i < frame; ++i) p = p + horizontal(start.yaw + static_cast<float>(A * std::sin(W * i))) * s;
+      for (int i = 0; i < frame; ++i)
+        p = p + horizontal(start.yaw + static_cast<float>(A * std::sin(W * i))) * s;
       pose.position = p;
       pose.position.y += 8.0 * s * std::sin(0.05 * f);
       pose.yaw = start.yaw + static_cast<float>(A * std::sin(W * f));

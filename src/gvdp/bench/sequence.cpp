@@ -19,10 +19,10 @@ void validate(const SequenceOptions& o) {
   GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
                    " (expected 1..150 degrees)");
   const double LIMIT = 1e8;  // int32 brick coordinates at level 0 hold about 2.7e8 units
-  GVDP_INPUT_CHECK(std::abs(o.origin.x) < LIMIT && std::abs(o.origin.y) < LIMIT &&
-                       std::abs(o.origin.z) < LIMIT,
-                   "bad --origin ", o.origin.x, ",", o.origin.y, ",", o.origin.z,
-                   " (each coordinate within 1e8)");
+  GVDP_INPUT_CHECK(
+      std::abs(o.origin.x) < LIMIT && std::abs(o.origin.y) < LIMIT && std::abs(o.origin.z) < LIMIT,
+      "bad --origin ", o.origin.x, ",", o.origin.y, ",", o.origin.z,
+      " (each coordinate within 1e8)");
 }
 
 FrameSetup frameOf(const SequenceOptions& o, int frame) {

@@ -21,8 +21,8 @@ struct FrameSetup {
   int frameIndex;
 
   GVDP_HD Ray primaryRay(int px, int py) const {
-    float sx = (2.0f * (static_cast<float>(px) + 0.5f) / static_cast<float>(width) - 1.0f) *
-               tanHalfFov;
+    float sx =
+        (2.0f * (static_cast<float>(px) + 0.5f) / static_cast<float>(width) - 1.0f) * tanHalfFov;
     float sy = (1.0f - 2.0f * (static_cast<float>(py) + 0.5f) / static_cast<float>(height)) *
                tanHalfFov * static_cast<float>(height) / static_cast<float>(width);
     return {eye, normalize(basis.forward + basis.right * sx + basis.up * sy)};
@@ -32,9 +32,8 @@ struct FrameSetup {
 
 constexpr float DEFAULT_FOV_DEGREES = 60.0f;
 
-inline FrameSetup makeFrame(const CameraPose& pose, const SceneParams& scene, int width,
-                            int height, int levels, int frameIndex,
-                            float fovDegrees = DEFAULT_FOV_DEGREES) {
+inline FrameSetup makeFrame(const CameraPose& pose, const SceneParams& scene, int width, int height,
+                            int levels, int frameIndex, float fovDegrees = DEFAULT_FOV_DEGREES) {
   FrameSetup f;
   f.scene = scene;
   f.width = width;

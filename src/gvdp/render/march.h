@@ -23,7 +23,9 @@ struct RayState {
   }
 };
 
-GVDP_HD GVDP_INLINE RayState initialRayState() { return {{0, 0, 0, 0}, 0, 0}; }
+GVDP_HD GVDP_INLINE RayState initialRayState() {
+  return {{0, 0, 0, 0}, 0, 0};
+}
 
 // Moves the state to the first lattice sample at or after distance t (strictly after the
 // current sample, so a skip always progresses).

@@ -7,7 +7,8 @@
 namespace gvdp {
 
 GVDP_HD GVDP_INLINE Vec3f skyColour(Vec3f d) {
-  if (d.y < 0.0f) return lerp(Vec3f{0.62f, 0.68f, 0.74f}, Vec3f{0.40f, 0.42f, 0.45f}, fminf(-d.y * 4.0f, 1.0f));
+  if (d.y < 0.0f)
+    return lerp(Vec3f{0.62f, 0.68f, 0.74f}, Vec3f{0.40f, 0.42f, 0.45f}, fminf(-d.y * 4.0f, 1.0f));
   return lerp(Vec3f{0.62f, 0.68f, 0.74f}, Vec3f{0.22f, 0.40f, 0.72f}, sqrtf(d.y));
 }
 

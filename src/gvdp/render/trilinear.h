@@ -22,10 +22,10 @@ GVDP_HD GVDP_INLINE Vec4f trilinear(Vec3f v, Fetch&& fetch) {
   Vec3f f{u.x - static_cast<float>(i.x), u.y - static_cast<float>(i.y),
           u.z - static_cast<float>(i.z)};
   Vec4f c00 = lerp4(unpackRgba8(fetch(i.x, i.y, i.z)), unpackRgba8(fetch(i.x + 1, i.y, i.z)), f.x);
-  Vec4f c10 = lerp4(unpackRgba8(fetch(i.x, i.y + 1, i.z)),
-                    unpackRgba8(fetch(i.x + 1, i.y + 1, i.z)), f.x);
-  Vec4f c01 = lerp4(unpackRgba8(fetch(i.x, i.y, i.z + 1)),
-                    unpackRgba8(fetch(i.x + 1, i.y, i.z + 1)), f.x);
+  Vec4f c10 =
+      lerp4(unpackRgba8(fetch(i.x, i.y + 1, i.z)), unpackRgba8(fetch(i.x + 1, i.y + 1, i.z)), f.x);
+  Vec4f c01 =
+      lerp4(unpackRgba8(fetch(i.x, i.y, i.z + 1)), unpackRgba8(fetch(i.x + 1, i.y, i.z + 1)), f.x);
   Vec4f c11 = lerp4(unpackRgba8(fetch(i.x, i.y + 1, i.z + 1)),
                     unpackRgba8(fetch(i.x + 1, i.y + 1, i.z + 1)), f.x);
   return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);

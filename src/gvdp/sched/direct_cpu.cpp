@@ -14,8 +14,8 @@ class DirectCpu final : public Scheduler {
     out = Image(frame.width, frame.height);
     uint32_t* pixels = out.pixels.data();
     parallelFor(
-        frame.pixelCount(), [&](int64_t i) { pixels[i] = renderDirectPixel(frame, static_cast<int>(i)); },
-        16);
+        frame.pixelCount(),
+        [&](int64_t i) { pixels[i] = renderDirectPixel(frame, static_cast<int>(i)); }, 16);
     FrameStats s;
     s.index = frame.frameIndex;
     s.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -25,6 +25,8 @@ class DirectCpu final : public Scheduler {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeDirectCpu() { return std::make_unique<DirectCpu>(); }
+std::unique_ptr<Scheduler> makeDirectCpu() {
+  return std::make_unique<DirectCpu>();
+}
 
 }  // namespace gvdp

@@ -30,6 +30,8 @@ class DirectCuda final : public Scheduler {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeDirectCuda() { return std::make_unique<DirectCuda>(); }
+std::unique_ptr<Scheduler> makeDirectCuda() {
+  return std::make_unique<DirectCuda>();
+}
 
 }  // namespace gvdp

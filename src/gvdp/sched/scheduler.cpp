@@ -6,7 +6,9 @@
 
 namespace gvdp {
 
-std::string_view backendName(Backend b) { return b == Backend::Cpu ? "cpu" : "cuda"; }
+std::string_view backendName(Backend b) {
+  return b == Backend::Cpu ? "cpu" : "cuda";
+}
 
 Backend parseBackend(std::string_view name) {
   if (name == "cpu") return Backend::Cpu;
@@ -14,7 +16,9 @@ Backend parseBackend(std::string_view name) {
   throw InputError("unknown backend '" + std::string(name) + "' (backends: cpu, cuda)");
 }
 
-std::string_view schedulerName(SchedulerKind) { return "direct"; }
+std::string_view schedulerName(SchedulerKind) {
+  return "direct";
+}
 
 SchedulerKind parseScheduler(std::string_view name) {
   if (name == "direct") return SchedulerKind::Direct;

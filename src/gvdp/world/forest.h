@@ -116,8 +116,8 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
     float vertical = fmaxf(-3.0f - t.y, t.y - tree.trunkTop);
     float rx = fmaxf(radial, 0.0f), vx = fmaxf(vertical, 0.0f);
     trunk = sqrtf(rx * rx + vx * vx) + fminf(fmaxf(radial, vertical), 0.0f);
-    crownQ = (q - tree.crownCentre) * Vec3f{1.0f / tree.crownRadii.x, 1.0f / tree.crownRadii.y,
-                                            1.0f / tree.crownRadii.z};
+    crownQ = (q - tree.crownCentre) *
+             Vec3f{1.0f / tree.crownRadii.x, 1.0f / tree.crownRadii.y, 1.0f / tree.crownRadii.z};
     crown = (length(crownQ) - 1.0f) * minComponent(tree.crownRadii);
   }
   float nearest = fminf(fminf(groundLB, trunk), fminf(crown, toBorder));
@@ -132,7 +132,8 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
       Vec3f n = normalize(Vec3f{q.x - tree.base.x, 0.0f, q.z - tree.base.z});
       solidColour = bakeShading({0.30f, 0.20f, 0.12f}, n);
     } else {
-      float tint = 0.5f + 0.5f * sinf(static_cast<float>(p.x) * 0.3f) * sinf(static_cast<float>(p.z) * 0.23f);
+      float tint = 0.5f + 0.5f * sinf(static_cast<float>(p.x) * 0.3f) *
+                              sinf(static_cast<float>(p.z) * 0.23f);
       solidColour = bakeShading(lerp(Vec3f{0.25f, 0.36f, 0.12f}, Vec3f{0.36f, 0.30f, 0.16f}, tint),
                                 groundNormal);
     }

@@ -25,16 +25,29 @@ GVDP_HD GVDP_INLINE uint32_t hash3(int x, int y, int z, uint32_t seed = 0) {
 }
 
 // Uniform float in [0, 1) from the top 24 bits.
-GVDP_HD GVDP_INLINE float toUnit(uint32_t h) { return static_cast<float>(h >> 8) * (1.0f / 16777216.0f); }
+GVDP_HD GVDP_INLINE float toUnit(uint32_t h) {
+  return static_cast<float>(h >> 8) * (1.0f / 16777216.0f);
+}
 
 GVDP_HD GVDP_INLINE float hash3Unit(int x, int y, int z, uint32_t seed) {
   return toUnit(hash3(x, y, z, seed));
 }
 
-// The classic shader sin-hash, fract(sin(dot(p, k)) * 43758.5453), in [0, 1). Arguments are
-// small (cell coordinates wrapped to a period), so sinf is accurate on both backends.
+// Multiply and add rounded separately: nvcc would otherwise fuse them into FMAs that round
+// differently from the CPU, and the sin-hash below amplifies any difference 43758 times.
+GVDP_HD GVDP_INLINE float mulRn(float a, float b) {
+#if GVDP_IS_GPU_CODE
+  return __fmul_rn(a, b);
+#else
+  return a * b;
+#endif
+}
+
+// The classic shader sin-hash, fract(sin(dot(p, k)) * 43758.5453), in [0, 1). The argument is
+// computed without contraction so that both backends take the sine of the same float.
 GVDP_HD GVDP_INLINE float sinHash(float a, float b, float c, float k) {
-  float s = sinf(a * 12.9898f + b * 78.233f + c * 37.719f + k * 4.581f) * 43758.5453f;
+  float arg = mulRn(a, 12.9898f) + mulRn(b, 78.233f) + mulRn(c, 37.719f) + mulRn(k, 4.581f);
+  float s = mulRn(sinf(arg), 43758.5453f);
   return s - floorf(s);
 }
 

@@ -22,22 +22,38 @@ struct NoiseSample {
 GVDP_HD GVDP_INLINE Vec3f latticeGradient(int x, int y, int z, uint32_t seed) {
   // The 12 cube-edge directions of improved noise (with 4 repeated to make 16).
   switch (hash3(x, y, z, seed) & 15u) {
-    case 0: return {1, 1, 0};
-    case 1: return {-1, 1, 0};
-    case 2: return {1, -1, 0};
-    case 3: return {-1, -1, 0};
-    case 4: return {1, 0, 1};
-    case 5: return {-1, 0, 1};
-    case 6: return {1, 0, -1};
-    case 7: return {-1, 0, -1};
-    case 8: return {0, 1, 1};
-    case 9: return {0, -1, 1};
-    case 10: return {0, 1, -1};
-    case 11: return {0, -1, -1};
-    case 12: return {1, 1, 0};
-    case 13: return {-1, 1, 0};
-    case 14: return {0, -1, 1};
-    default: return {0, -1, -1};
+    case 0:
+      return {1, 1, 0};
+    case 1:
+      return {-1, 1, 0};
+    case 2:
+      return {1, -1, 0};
+    case 3:
+      return {-1, -1, 0};
+    case 4:
+      return {1, 0, 1};
+    case 5:
+      return {-1, 0, 1};
+    case 6:
+      return {1, 0, -1};
+    case 7:
+      return {-1, 0, -1};
+    case 8:
+      return {0, 1, 1};
+    case 9:
+      return {0, -1, 1};
+    case 10:
+      return {0, 1, -1};
+    case 11:
+      return {0, -1, -1};
+    case 12:
+      return {1, 1, 0};
+    case 13:
+      return {-1, 1, 0};
+    case 14:
+      return {0, -1, 1};
+    default:
+      return {0, -1, -1};
   }
 }
 
@@ -80,7 +96,8 @@ GVDP_HD GVDP_INLINE NoiseSample gradientNoise(Vec3d p, uint32_t seed) {
             u.x * u.y * u.z * k7;
   Vec3f g = ga + (gb - ga) * u.x + (gc - ga) * u.y + (ge - ga) * u.z +
             (ga - gb - gc + gd) * (u.x * u.y) + (ga - gc - ge + gg) * (u.y * u.z) +
-            (ga - gb - ge + gf) * (u.z * u.x) + (-ga + gb + gc - gd + ge - gf - gg + gh) * (u.x * u.y * u.z);
+            (ga - gb - ge + gf) * (u.z * u.x) +
+            (-ga + gb + gc - gd + ge - gf - gg + gh) * (u.x * u.y * u.z);
   g.x += du.x * (k1 + u.y * k4 + u.z * k6 + u.y * u.z * k7);
   g.y += du.y * (k2 + u.z * k5 + u.x * k4 + u.z * u.x * k7);
   g.z += du.z * (k3 + u.x * k6 + u.y * k5 + u.x * u.y * k7);

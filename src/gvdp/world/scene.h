@@ -22,11 +22,16 @@ struct SceneParams {
 
 GVDP_HD GVDP_INLINE VoxelSample produceVoxel(const SceneParams& scene, Vec3d p, float voxelSize) {
   switch (scene.kind) {
-    case SceneKind::Perlin: return producePerlin(p, voxelSize, scene.seed);
-    case SceneKind::Fbm: return produceFbm(p, voxelSize, scene.seed);
-    case SceneKind::Forest: return produceForest(p, voxelSize, scene.seed);
-    case SceneKind::RandomSpheres: return produceRandomSpheres(p, voxelSize, scene.seed);
-    default: return produceAlignedSpheres(p, voxelSize, scene.seed);
+    case SceneKind::Perlin:
+      return producePerlin(p, voxelSize, scene.seed);
+    case SceneKind::Fbm:
+      return produceFbm(p, voxelSize, scene.seed);
+    case SceneKind::Forest:
+      return produceForest(p, voxelSize, scene.seed);
+    case SceneKind::RandomSpheres:
+      return produceRandomSpheres(p, voxelSize, scene.seed);
+    default:
+      return produceAlignedSpheres(p, voxelSize, scene.seed);
   }
 }
 

@@ -18,11 +18,13 @@ struct SphereCell {
 };
 
 GVDP_HD GVDP_INLINE SphereCell sphereCellOf(Vec3d p) {
-  double cx = floor(p.x / SPHERE_CELL), cy = floor(p.y / SPHERE_CELL), cz = floor(p.z / SPHERE_CELL);
-  return {{static_cast<float>(p.x - cx * SPHERE_CELL), static_cast<float>(p.y - cy * SPHERE_CELL),
-           static_cast<float>(p.z - cz * SPHERE_CELL)},
-          {static_cast<int>(static_cast<long long>(cx)), static_cast<int>(static_cast<long long>(cy)),
-           static_cast<int>(static_cast<long long>(cz))}};
+  double cx = floor(p.x / SPHERE_CELL), cy = floor(p.y / SPHERE_CELL),
+         cz = floor(p.z / SPHERE_CELL);
+  return {
+      {static_cast<float>(p.x - cx * SPHERE_CELL), static_cast<float>(p.y - cy * SPHERE_CELL),
+       static_cast<float>(p.z - cz * SPHERE_CELL)},
+      {static_cast<int>(static_cast<long long>(cx)), static_cast<int>(static_cast<long long>(cy)),
+       static_cast<int>(static_cast<long long>(cz))}};
 }
 
 // Opacity of a sphere seen through voxels of size voxelSize: a one-voxel band outside the

@@ -17,7 +17,9 @@ struct DensitySample {
   Vec3f grad;
 };
 
-GVDP_HD GVDP_INLINE Vec3d scaled(Vec3d p, double s) { return {p.x * s, p.y * s, p.z * s}; }
+GVDP_HD GVDP_INLINE Vec3d scaled(Vec3d p, double s) {
+  return {p.x * s, p.y * s, p.z * s};
+}
 
 // Shared shading of density fields: coverage from the gradient-estimated distance.
 GVDP_HD GVDP_INLINE float densityCoverage(const DensitySample& s, float voxelSize) {
@@ -27,8 +29,8 @@ GVDP_HD GVDP_INLINE float densityCoverage(const DensitySample& s, float voxelSiz
 // --- perlin ---------------------------------------------------------------------------------
 constexpr float PERLIN_HEIGHT = 24.0f;
 constexpr float PERLIN_WAVE0 = 32.0f, PERLIN_WAVE1 = 9.0f, PERLIN_AMP1 = 0.4f;
-constexpr float PERLIN_LIPSCHITZ =
-    1.0f / PERLIN_HEIGHT + NOISE_LIPSCHITZ / PERLIN_WAVE0 + PERLIN_AMP1 * NOISE_LIPSCHITZ / PERLIN_WAVE1;
+constexpr float PERLIN_LIPSCHITZ = 1.0f / PERLIN_HEIGHT + NOISE_LIPSCHITZ / PERLIN_WAVE0 +
+                                   PERLIN_AMP1 * NOISE_LIPSCHITZ / PERLIN_WAVE1;
 
 GVDP_HD GVDP_INLINE DensitySample perlinDensity(Vec3d p, uint32_t seed) {
   NoiseSample n0 = gradientNoise(scaled(p, 1.0 / PERLIN_WAVE0), seed);
