@@ -28,9 +28,10 @@ Vec3d parseVector(const std::string& text, const char* flag) {
 constexpr int UNSET = std::numeric_limits<int>::min();  // flag not given: use the default
 
 struct RenderFlags {
-  std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "direct";
+  std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
   std::string origin = "0,0,0", out = "out";
   int frames = UNSET, width = UNSET, height = UNSET, levels = DEFAULT_LEVELS;
+  int64_t poolBricks = UNSET, poolMb = UNSET;
   float fov = DEFAULT_FOV_DEGREES;
 };
 
@@ -41,7 +42,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f) {
   cmd->add_option("--width", f.width, "image width (default: 1500 on the GPU, 160 on the CPU)");
   cmd->add_option("--height", f.height, "image height (default: 1000 on the GPU, 100 on the CPU)");
   cmd->add_option("--backend", f.backend, "cpu, cuda or auto (the GPU when there is one)");
-  cmd->add_option("--scheduler", f.scheduler, "direct");
+  cmd->add_option("--scheduler", f.scheduler, "sp (GigaVoxels loop, default) or direct (no cache)");
+  cmd->add_option("--pool-bricks", f.poolBricks,
+                  "brick pool slots (default: 500000 = 2 GB on the GPU, 32768 on the CPU)");
+  cmd->add_option("--pool-mb", f.poolMb, "brick pool size in MiB (instead of --pool-bricks)");
   cmd->add_option("--levels", f.levels, "clipmap levels (voxel size doubles per level)");
   cmd->add_option("--fov", f.fov, "horizontal field of view, degrees");
   cmd->add_option("--origin", f.origin, "x,y,z added to the scene's start position");
@@ -59,6 +63,19 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.width = f.width != UNSET ? f.width : (gpu ? 1500 : 160);
   o.height = f.height != UNSET ? f.height : (gpu ? 1000 : 100);
   o.levels = f.levels;
+  GVDP_INPUT_CHECK(f.poolBricks == UNSET || f.poolMb == UNSET,
+                   "give --pool-bricks or --pool-mb, not both");
+  if (f.poolBricks != UNSET) {
+    GVDP_INPUT_CHECK(f.poolBricks >= 1 && f.poolBricks <= 50000000, "bad --pool-bricks ",
+                     f.poolBricks, " (expected 1..50000000)");
+    o.scheduler.poolBricks = static_cast<uint32_t>(f.poolBricks);
+  }
+  if (f.poolMb != UNSET) {
+    int64_t bricks = f.poolMb * (1 << 20) / (BRICK_SAMPLE_COUNT * 4);
+    GVDP_INPUT_CHECK(bricks >= 1 && bricks <= 50000000, "bad --pool-mb ", f.poolMb,
+                     " (expected 1..190000)");
+    o.scheduler.poolBricks = static_cast<uint32_t>(bricks);
+  }
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
   validate(o);
@@ -81,16 +98,18 @@ int runRender(const RenderFlags& flags) {
                std::string(schedulerName(o.scheduler.kind)).c_str(),
                o.scheduler.backend == Backend::Cuda ? cudaDeviceSummary().c_str() : "cpu");
   std::vector<FrameStats> frames;
-  renderSequence(o, [&](const Image& image, const FrameStats& s) {
+  MemoryReport memory = renderSequence(o, [&](const Image& image, const FrameStats& s) {
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
     writePng(image, dir + name);
     frames.push_back(s);
-    std::printf("frame %4d  %9.2f ms  %8.1f FPS  unfinished %lld\n", s.index, s.ms,
-                1000.0 / std::max(s.ms, 1e-6), static_cast<long long>(s.unfinishedPixels));
+    std::printf("frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s\n",
+                s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
+                static_cast<unsigned long long>(s.cache.produced),
+                static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "");
     std::fflush(stdout);
   });
-  writeStatsJson(dir + "/stats.json", o, frames);
+  writeStatsJson(dir + "/stats.json", o, frames, memory);
   double total = 0.0;
   for (const FrameStats& s : frames) total += s.ms;
   double mean = total / static_cast<double>(frames.size());

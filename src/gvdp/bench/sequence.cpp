@@ -33,8 +33,8 @@ FrameSetup frameOf(const SequenceOptions& o, int frame) {
   return makeFrame(pose, scene.params, o.width, o.height, o.levels, frame, o.fovDegrees);
 }
 
-void renderSequence(const SequenceOptions& o,
-                    const std::function<void(const Image&, const FrameStats&)>& onFrame) {
+MemoryReport renderSequence(const SequenceOptions& o,
+                            const std::function<void(const Image&, const FrameStats&)>& onFrame) {
   validate(o);
   std::unique_ptr<Scheduler> scheduler = makeScheduler(o.scheduler);
   Image image;
@@ -42,6 +42,7 @@ void renderSequence(const SequenceOptions& o,
     FrameStats stats = scheduler->render(frameOf(o, f), image);
     onFrame(image, stats);
   }
+  return scheduler->memory();
 }
 
 }  // namespace gvdp

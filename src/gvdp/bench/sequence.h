@@ -27,8 +27,9 @@ void validate(const SequenceOptions& options);
 
 FrameSetup frameOf(const SequenceOptions& options, int frame);
 
-// Renders every frame in order; onFrame sees each image and its stats.
-void renderSequence(const SequenceOptions& options,
-                    const std::function<void(const Image&, const FrameStats&)>& onFrame);
+// Renders every frame in order; onFrame sees each image and its stats. Returns the memory the
+// scheduler held.
+MemoryReport renderSequence(const SequenceOptions& options,
+                            const std::function<void(const Image&, const FrameStats&)>& onFrame);
 
 }  // namespace gvdp

@@ -8,7 +8,8 @@
 
 namespace gvdp {
 
-std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& frames) {
+std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& frames,
+                      const MemoryReport& memory) {
   nlohmann::json j;
   j["scene"] = o.scene;
   j["movement"] = movementName(o.movement);
@@ -17,19 +18,33 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   j["width"] = o.width;
   j["height"] = o.height;
   j["levels"] = o.levels;
+  j["pool_bricks"] = o.scheduler.poolBricks;
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
+  nlohmann::json mem = nlohmann::json::object();
+  for (const MemoryItem& m : memory) mem[m.name] = m.bytes;
+  j["memory"] = mem;
   nlohmann::json list = nlohmann::json::array();
   for (const FrameStats& f : frames)
-    list.push_back({{"index", f.index}, {"ms", f.ms}, {"unfinished_pixels", f.unfinishedPixels}});
+    list.push_back({{"index", f.index},
+                    {"ms", f.ms},
+                    {"passes", f.passes},
+                    {"bricks_requested", f.cache.requested},
+                    {"bricks_produced", f.cache.produced},
+                    {"bricks_empty", f.cache.empty},
+                    {"bricks_failed", f.cache.failed},
+                    {"evictions", f.cache.evicted},
+                    {"pool_occupancy", f.cache.resident},
+                    {"unfinished_pixels", f.unfinishedPixels},
+                    {"degraded", f.degraded}});
   j["frames"] = list;
   return j.dump(1);
 }
 
 void writeStatsJson(const std::string& path, const SequenceOptions& o,
-                    const std::vector<FrameStats>& frames) {
+                    const std::vector<FrameStats>& frames, const MemoryReport& memory) {
   std::ofstream out(path);
   GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
-  out << statsJson(o, frames) << "\n";
+  out << statsJson(o, frames, memory) << "\n";
   GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
 }
 

@@ -1,4 +1,6 @@
-// stats.json of a render: {"scene", ..., "frames":[{"index","ms","unfinished_pixels"}, ...]}.
+// stats.json of a render: {"scene", ..., "memory":{structure: bytes},
+// "frames":[{"index","ms","passes","bricks_requested","bricks_produced","bricks_empty",
+// "bricks_failed","evictions","pool_occupancy","unfinished_pixels","degraded"}, ...]}.
 #pragma once
 
 #include <string>
@@ -8,8 +10,10 @@
 
 namespace gvdp {
 
-std::string statsJson(const SequenceOptions& options, const std::vector<FrameStats>& frames);
+std::string statsJson(const SequenceOptions& options, const std::vector<FrameStats>& frames,
+                      const MemoryReport& memory);
 void writeStatsJson(const std::string& path, const SequenceOptions& options,
-                    const std::vector<FrameStats>& frames);  // throws InputError if unwritable
+                    const std::vector<FrameStats>& frames,
+                    const MemoryReport& memory);  // throws InputError if unwritable
 
 }  // namespace gvdp

@@ -14,9 +14,12 @@ namespace gvdp {
 struct DirectAccess {
   const FrameSetup& frame;
 
-  GVDP_HD BrickLookup lookup(int, Vec3i) const { return {BrickState::Resident, 0u}; }
-  GVDP_HD Vec4f sample(int level, Vec3i, const BrickLookup&, Vec3f v) const {
-    double vs = frame.lod.voxelSize(level);
+  GVDP_HD BrickLookup lookup(int level, Vec3i brick) const {
+    return {BrickState::Resident, 0u, level, brick};
+  }
+  GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) const {
+    double vs = frame.lod.voxelSize(b.level);
+    Vec3f v = p / static_cast<float>(vs);
     Vec3d o = frame.localOrigin;
     float fvs = static_cast<float>(vs);
     return trilinear(v, [&](int x, int y, int z) {

@@ -44,18 +44,27 @@ GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, float t) {
 
 enum class BrickState : uint8_t { Resident, Empty, Stop };
 
+// What to do with the brick under a sample: sample `slot` (Resident) or skip the box of
+// `brick` (Empty), both at `level`, which is the sample's level or a coarser one (an EMPTY
+// ancestor, or a resident ancestor standing in for a missing brick in a degraded frame).
 struct BrickLookup {
   BrickState state;
-  uint32_t slot;  // when Resident
+  uint32_t slot;
+  int level;
+  Vec3i brick;  // local brick coordinates at `level`
 };
 
 enum class MarchResult : uint8_t { Finished, Stopped };
 
 // Access provides:
-//   BrickLookup lookup(int level, Vec3i brick)    brick: local brick coordinates at that level
-//   Vec4f sample(int level, Vec3i brick, const BrickLookup&, Vec3f v)   v: local voxel coords
+//   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level
+//   Vec4f sample(const BrickLookup&, Vec3f p)    p: local position of the sample
+// A resident lookup is reused while the samples stay in the same brick.
 template <class Access>
 GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
+  BrickLookup resident{BrickState::Stop, 0u, -1, {0, 0, 0}};
+  int residentLevel = -1;  // the sample level and brick `resident` was looked up for
+  Vec3i residentBrick{0, 0, 0};
   while (!s.finished(lod)) {
     float t = lod.sampleT(s.level, s.step);
     if (t >= lod.levelEnd(s.level)) {
@@ -65,17 +74,22 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
     }
     float vs = lod.voxelSize(s.level);
     Vec3f p = ray.o + ray.d * t;
-    Vec3f v = p / vs;
-    Vec3i brick = floorToInt(v * (1.0f / BRICK_WIDTH));
-    BrickLookup b = access.lookup(s.level, brick);
-    if (b.state == BrickState::Stop) return MarchResult::Stopped;
-    if (b.state == BrickState::Empty) {
-      float side = vs * BRICK_WIDTH;
-      Vec3f lo{brick.x * side, brick.y * side, brick.z * side};
-      advanceTo(s, lod, boxExit(ray, lo, lo + Vec3f{side, side, side}));
-      continue;
+    Vec3i brick = floorToInt(p / vs * (1.0f / BRICK_WIDTH));
+    BrickLookup b = resident;
+    if (residentLevel != s.level || !(brick == residentBrick)) {
+      b = access.lookup(s.level, brick);
+      if (b.state == BrickState::Stop) return MarchResult::Stopped;
+      if (b.state == BrickState::Empty) {
+        float side = lod.voxelSize(b.level) * BRICK_WIDTH;
+        Vec3f lo{b.brick.x * side, b.brick.y * side, b.brick.z * side};
+        advanceTo(s, lod, boxExit(ray, lo, lo + Vec3f{side, side, side}));
+        continue;
+      }
+      resident = b;
+      residentLevel = s.level;
+      residentBrick = brick;
     }
-    Vec4f c = access.sample(s.level, brick, b, v);
+    Vec4f c = access.sample(b, p);
     float k = 1.0f - s.colour.w;
     s.colour = {s.colour.x + k * c.x, s.colour.y + k * c.y, s.colour.z + k * c.z,
                 s.colour.w + k * c.w};

@@ -23,6 +23,8 @@ class DirectCuda final : public Scheduler {
     return s;
   }
 
+  MemoryReport memory() const override { return {}; }
+
  private:
   DeviceBuffer<uint32_t> image_;
   GpuTimer timer_;

@@ -2,10 +2,15 @@
 // refuses the cuda backend before reaching them.
 #include "gvdp/base/error.h"
 #include "gvdp/sched/direct.h"
+#include "gvdp/sched/sp.h"
 
 namespace gvdp {
 
 std::unique_ptr<Scheduler> makeDirectCuda() {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions&) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

@@ -8,13 +8,14 @@
 #include <string>
 #include <string_view>
 
+#include "gvdp/cache/cache_host.h"
 #include "gvdp/io/image.h"
 #include "gvdp/render/frame.h"
 
 namespace gvdp {
 
 enum class Backend { Cpu, Cuda };
-enum class SchedulerKind { Direct };
+enum class SchedulerKind { Direct, Sp };
 
 std::string_view backendName(Backend b);
 Backend parseBackend(std::string_view name);  // "cpu" | "cuda"; throws InputError
@@ -25,18 +26,28 @@ struct FrameStats {
   int index = 0;
   double ms = 0.0;  // GPU: CUDA events around the frame's work; CPU: wall clock
   int64_t unfinishedPixels = 0;
+  int passes = 0;         // render passes (sp iterations)
+  bool degraded = false;  // some bricks could not be produced: coarser levels stood in
+  CacheStats cache;
 };
 
 struct SchedulerOptions {
   Backend backend = Backend::Cpu;
-  SchedulerKind kind = SchedulerKind::Direct;
+  SchedulerKind kind = SchedulerKind::Sp;
+  uint32_t poolBricks = 0;  // 0: the backend's default
 };
+
+// Default pool sizes: about 2 GB on the GPU (the paper), 128 MB on the CPU.
+constexpr uint32_t DEFAULT_POOL_BRICKS_CUDA = 500000;
+constexpr uint32_t DEFAULT_POOL_BRICKS_CPU = 32768;
 
 class Scheduler {
  public:
   virtual ~Scheduler() = default;
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
   virtual FrameStats render(const FrameSetup& frame, Image& out) = 0;
+  // Bytes of every structure the scheduler holds (after the last frame).
+  virtual MemoryReport memory() const = 0;
 };
 
 // Throws InputError when the backend is not available (no CUDA build or no device).

@@ -1,0 +1,78 @@
+// Atomics for the one-source bodies: CUDA atomics on the GPU, std::atomic_ref on the CPU (so the
+// CPU backend runs the same protocol under ThreadSanitizer). Loads acquire and stores release,
+// which is what publishing a brick (write samples, fence, then entry) needs.
+#pragma once
+
+#include <cstdint>
+
+#include "gvdp/base/defs.h"
+
+#if !GVDP_IS_GPU_CODE
+#include <atomic>
+#endif
+
+namespace gvdp {
+
+GVDP_HD GVDP_INLINE uint32_t atomicCas32(uint32_t* p, uint32_t expected, uint32_t desired) {
+#if GVDP_IS_GPU_CODE
+  return atomicCAS(p, expected, desired);
+#else
+  std::atomic_ref<uint32_t>(*p).compare_exchange_strong(expected, desired,
+                                                         std::memory_order_acq_rel);
+  return expected;  // the value found: equal to the argument on success
+#endif
+}
+
+GVDP_HD GVDP_INLINE uint32_t atomicAdd32(uint32_t* p, uint32_t v) {
+#if GVDP_IS_GPU_CODE
+  return atomicAdd(p, v);
+#else
+  return std::atomic_ref<uint32_t>(*p).fetch_add(v, std::memory_order_relaxed);
+#endif
+}
+
+GVDP_HD GVDP_INLINE uint32_t atomicExch32(uint32_t* p, uint32_t v) {
+#if GVDP_IS_GPU_CODE
+  return atomicExch(p, v);
+#else
+  return std::atomic_ref<uint32_t>(*p).exchange(v, std::memory_order_acq_rel);
+#endif
+}
+
+GVDP_HD GVDP_INLINE uint32_t loadAcquire32(const uint32_t* p) {
+#if GVDP_IS_GPU_CODE
+  uint32_t v = *reinterpret_cast<const volatile uint32_t*>(p);
+  __threadfence();
+  return v;
+#else
+  return std::atomic_ref<uint32_t>(*const_cast<uint32_t*>(p)).load(std::memory_order_acquire);
+#endif
+}
+
+// Loads a word another thread may write concurrently, without ordering anything else.
+GVDP_HD GVDP_INLINE uint32_t loadRelaxed32(const uint32_t* p) {
+#if GVDP_IS_GPU_CODE
+  return *reinterpret_cast<const volatile uint32_t*>(p);
+#else
+  return std::atomic_ref<uint32_t>(*const_cast<uint32_t*>(p)).load(std::memory_order_relaxed);
+#endif
+}
+
+GVDP_HD GVDP_INLINE void storeRelease32(uint32_t* p, uint32_t v) {
+#if GVDP_IS_GPU_CODE
+  __threadfence();
+  *reinterpret_cast<volatile uint32_t*>(p) = v;
+#else
+  std::atomic_ref<uint32_t>(*p).store(v, std::memory_order_release);
+#endif
+}
+
+GVDP_HD GVDP_INLINE void storeRelaxed32(uint32_t* p, uint32_t v) {
+#if GVDP_IS_GPU_CODE
+  *reinterpret_cast<volatile uint32_t*>(p) = v;
+#else
+  std::atomic_ref<uint32_t>(*p).store(v, std::memory_order_relaxed);
+#endif
+}
+
+}  // namespace gvdp

@@ -1,0 +1,115 @@
+#include "gvdp/cache/brick_cache_cpu.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "gvdp/base/error.h"
+#include "gvdp/base/parallel.h"
+#include "gvdp/render/produce.h"
+
+namespace gvdp {
+
+BrickCacheCpu::BrickCacheCpu(uint32_t poolBricks)
+    : poolBricks_(poolBricks),
+      timestamps_(poolBricks, 0u),
+      inverse_(poolBricks, BrickKey{{0, 0, 0}, NO_LEVEL}),
+      texels_(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT, 0u) {
+  GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
+  freeSlots_.resize(freeListCapacity(poolBricks));
+}
+
+void BrickCacheCpu::beginFrame(const FrameSetup& frame) {
+  ClipmapTracker::Update u = tracker_.next(frame);
+  clipmap_ = u.clipmap;
+  std::memset(counters_, 0, sizeof counters_);
+  degraded_ = false;
+  refills_ = 0;
+  ++frame_;
+  if (u.fullReset) {
+    entries_.assign(clipmap_.entryCount(), ENTRY_MISSING);
+    std::fill(timestamps_.begin(), timestamps_.end(), 0u);
+    std::fill(inverse_.begin(), inverse_.end(), BrickKey{{0, 0, 0}, NO_LEVEL});
+  } else {
+    CacheView v = view();
+    parallelFor(u.slabs.total(), [&](int64_t i) { resetSlabItem(v, u.slabs, static_cast<uint32_t>(i)); }, 4096);
+  }
+  size_t rays = static_cast<size_t>(frame.pixelCount());
+  if (requests_.size() < rays) requests_.resize(rays);
+  refill();
+  refills_ = 0;
+}
+
+uint32_t BrickCacheCpu::refill() {
+  // LRU: slots by (timestamp, slot), oldest first; only those not used in this frame.
+  std::vector<uint64_t> order(poolBricks_);
+  for (uint32_t s = 0; s < poolBricks_; ++s)
+    order[s] = (static_cast<uint64_t>(timestamps_[s]) << 32) | s;
+  size_t take = std::min<size_t>(freeSlots_.size(), order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(take), order.end());
+  uint32_t n = 0;
+  while (n < take && (order[n] >> 32) < frame_) {
+    freeSlots_[n] = static_cast<uint32_t>(order[n]);
+    ++n;
+  }
+  freeCount_ = n;
+  counters_[COUNTER_FREE_NEXT] = 0;
+  CacheView v = view();
+  parallelFor(n, [&](int64_t i) { unmapSlot(v, freeSlots_[i]); }, 256);
+  ++refills_;
+  return n;
+}
+
+void BrickCacheCpu::produce(const SceneParams& scene, const CacheView& cache, const BrickKey& key) {
+  Rgba8 samples[BRICK_SAMPLE_COUNT];
+  bool empty = true;
+  for (int i = 0; i < BRICK_SAMPLE_COUNT; ++i) {
+    VoxelSample v = produceBrickSample(scene, key, i);
+    samples[i] = v.rgba;
+    empty = empty && v.empty;
+  }
+  uint32_t slot = empty ? MAX_SLOTS : takeFreeSlot(cache);
+  if (!empty && slot != MAX_SLOTS)
+    std::memcpy(texels_.data() + static_cast<size_t>(slot) * BRICK_SAMPLE_COUNT, samples,
+                sizeof samples);
+  publishBrick(cache, key, empty, slot);
+}
+
+CacheView BrickCacheCpu::view() {
+  CacheView v{};
+  v.clipmap = clipmap_;
+  v.entries = entries_.data();
+  v.timestamps = timestamps_.data();
+  v.inverse = inverse_.data();
+  v.freeSlots = freeSlots_.data();
+  v.freeCount = freeCount_;
+  v.requests = requests_.data();
+  v.requestCapacity = static_cast<uint32_t>(requests_.size());
+  v.counters = counters_;
+  v.frame = frame_;
+  v.degraded = degraded_ ? 1u : 0u;
+  return v;
+}
+
+CacheStats BrickCacheCpu::frameStats() const {
+  CacheStats s;
+  s.produced = counters_[COUNTER_PRODUCED];
+  s.empty = counters_[COUNTER_EMPTY];
+  s.failed = counters_[COUNTER_FAILED];
+  s.evicted = counters_[COUNTER_EVICTED];
+  s.requested = s.produced + s.empty + s.failed;
+  s.resident = static_cast<uint64_t>(
+      std::count_if(inverse_.begin(), inverse_.end(), [](const BrickKey& k) { return k.level != NO_LEVEL; }));
+  s.refills = refills_;
+  return s;
+}
+
+MemoryReport BrickCacheCpu::memory() const {
+  return {{"brick_pool", texels_.size() * sizeof(Rgba8)},
+          {"indirection_table", entries_.size() * sizeof(uint32_t)},
+          {"inverse_table", inverse_.size() * sizeof(BrickKey)},
+          {"timestamps", timestamps_.size() * sizeof(uint32_t)},
+          {"free_slot_list", freeSlots_.size() * sizeof(uint32_t)},
+          {"request_queue", requests_.size() * sizeof(BrickKey)}};
+}
+
+}  // namespace gvdp

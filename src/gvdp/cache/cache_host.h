@@ -1,0 +1,57 @@
+// Host-side bookkeeping shared by the CPU and CUDA caches: the clipmap from frame to frame, the
+// free-list capacity, per-frame statistics and the memory report.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gvdp/cache/slabs.h"
+
+namespace gvdp {
+
+struct CacheStats {
+  uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
+  uint64_t resident = 0;  // slots holding a brick at the end of the frame
+  uint32_t refills = 0;   // free-list refills after the frame-start one
+};
+
+struct MemoryItem {
+  std::string name;
+  size_t bytes;
+};
+using MemoryReport = std::vector<MemoryItem>;
+
+// Paper 3.3.4: a list of 10% of the pool; small pools may free every slot.
+inline uint32_t freeListCapacity(uint32_t poolBricks) {
+  uint32_t tenth = poolBricks / 10;
+  uint32_t floor = poolBricks < 256u ? poolBricks : 256u;
+  return tenth > floor ? tenth : floor;
+}
+
+// The clipmap of consecutive frames: the slabs to reset, or a full reset when the geometry
+// changed (first frame, other resolution or level count).
+class ClipmapTracker {
+ public:
+  struct Update {
+    Clipmap clipmap;
+    bool fullReset;
+    SlabJobs slabs;
+  };
+
+  Update next(const FrameSetup& frame) {
+    Update u{clipmapOf(frame), true, {}};
+    if (previous_ && previous_->width == u.clipmap.width && previous_->levels == u.clipmap.levels) {
+      u.fullReset = false;
+      u.slabs = slabJobs(*previous_, u.clipmap);
+    }
+    previous_ = u.clipmap;
+    return u;
+  }
+
+ private:
+  std::optional<Clipmap> previous_;
+};
+
+}  // namespace gvdp

@@ -1,0 +1,91 @@
+// Cache maintenance bodies shared by the CPU and CUDA backends: resetting the clipmap slabs that
+// leave a window, unmapping LRU slots through the inverse table, taking a free slot and
+// publishing a produced brick (paper 3.2, 3.3.2, 3.3.4).
+#pragma once
+
+#include "gvdp/base/atomics.h"
+#include "gvdp/cache/cache_view.h"
+
+namespace gvdp {
+
+// A slab of one level's window that the camera left: `count` planes along `axis`, starting at
+// global brick coordinate `first` (planes of W x W entries each).
+struct SlabJob {
+  int level, axis, first, count;
+};
+
+// All slabs of one frame's window moves, as one launch: job j covers items
+// [offset[j], offset[j] + count * W * W).
+struct SlabJobs {
+  int jobCount;
+  SlabJob jobs[3 * MAX_LEVELS];
+  uint32_t offset[3 * MAX_LEVELS + 1];
+  uint32_t total() const { return offset[jobCount]; }
+};
+
+// Frees the slot an entry holds (the slot becomes the least recently used) and resets it.
+GVDP_HD GVDP_INLINE void resetEntry(const CacheView& c, uint32_t index) {
+  uint32_t e = atomicExch32(&c.entries[index], ENTRY_MISSING);
+  if (isSlot(e)) {
+    c.inverse[e].level = NO_LEVEL;
+    storeRelaxed32(&c.timestamps[e], 0u);
+    atomicAdd32(&c.counters[COUNTER_EVICTED], 1u);
+  }
+}
+
+GVDP_HD GVDP_INLINE void resetSlabItem(const CacheView& c, const SlabJobs& jobs, uint32_t item) {
+  int j = 0;
+  while (item >= jobs.offset[j + 1]) ++j;
+  const SlabJob& job = jobs.jobs[j];
+  uint32_t w = static_cast<uint32_t>(c.clipmap.width);
+  uint32_t local = item - jobs.offset[j];
+  int plane = job.first + static_cast<int>(local / (w * w));
+  int u = static_cast<int>(local % w), v = static_cast<int>((local / w) % w);
+  Vec3i g = job.axis == 0 ? Vec3i{plane, u, v} : job.axis == 1 ? Vec3i{u, plane, v} : Vec3i{u, v, plane};
+  // Only the toroidal index matters: u and v run over every residue of the other two axes.
+  resetEntry(c, c.clipmap.entryIndex(job.level, g));
+}
+
+// Unmaps the brick a free-list slot still holds (if its entry still points to it).
+GVDP_HD GVDP_INLINE void unmapSlot(const CacheView& c, uint32_t slot) {
+  BrickKey k = c.inverse[slot];
+  if (k.level == NO_LEVEL) return;
+  uint32_t index = c.clipmap.entryIndex(k.level, k.brick);
+  if (atomicCas32(&c.entries[index], slot, ENTRY_MISSING) == slot)
+    atomicAdd32(&c.counters[COUNTER_EVICTED], 1u);
+  c.inverse[slot].level = NO_LEVEL;
+}
+
+// Queues brick g of `level` for production; the caller won the MISSING -> IN_PRODUCTION CAS.
+GVDP_HD GVDP_INLINE void requestBrick(const CacheView& c, int level, Vec3i g) {
+  uint32_t i = atomicAdd32(&c.counters[COUNTER_REQUESTS], 1u);
+  // The queue holds one request per ray of a pass; it cannot overflow unless misconfigured.
+  if (i < c.requestCapacity) c.requests[i] = {g, level};
+}
+
+// Algorithm 2, thread 0's part: a slot from the free slot list, or MAX_SLOTS when exhausted.
+GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
+  uint32_t i = atomicAdd32(&c.counters[COUNTER_FREE_NEXT], 1u);
+  return i < c.freeCount ? c.freeSlots[i] : MAX_SLOTS;
+}
+
+// Algorithm 2, the end: publish what production found. The samples of a resident brick must be
+// written (and fenced, by the caller on the GPU) before this.
+GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, bool empty,
+                                      uint32_t slot) {
+  uint32_t index = c.clipmap.entryIndex(key.level, key.brick);
+  if (empty) {
+    storeRelease32(&c.entries[index], ENTRY_EMPTY);
+    atomicAdd32(&c.counters[COUNTER_EMPTY], 1u);
+  } else if (slot == MAX_SLOTS) {
+    storeRelease32(&c.entries[index], ENTRY_MISSING);  // retried after a refill, or degraded
+    atomicAdd32(&c.counters[COUNTER_FAILED], 1u);
+  } else {
+    c.inverse[slot] = key;
+    storeRelaxed32(&c.timestamps[slot], c.frame);
+    storeRelease32(&c.entries[index], slot);
+    atomicAdd32(&c.counters[COUNTER_PRODUCED], 1u);
+  }
+}
+
+}  // namespace gvdp

@@ -1,0 +1,38 @@
+// The brick cache as one POD view over buffers owned by a backend (STYLE.md 5): indirection
+// table (clipmap entries), inverse table, timestamps, free slot list, request queue and the
+// counters the schedulers read. Kernels and CPU tasks take it by value.
+#pragma once
+
+#include <cstdint>
+
+#include "gvdp/cache/brick_key.h"
+#include "gvdp/cache/clipmap.h"
+
+namespace gvdp {
+
+enum CacheCounter : int {
+  COUNTER_FREE_NEXT,  // next index into the free slot list (may run past freeCount)
+  COUNTER_REQUESTS,   // bricks queued for production (CAS winners)
+  COUNTER_PRODUCED,   // bricks written to the pool
+  COUNTER_EMPTY,      // bricks found empty
+  COUNTER_FAILED,     // productions without a free slot (entry back to MISSING)
+  COUNTER_EVICTED,    // resident bricks unmapped (LRU or leaving the clipmap)
+  COUNTER_COUNT
+};
+
+struct CacheView {
+  Clipmap clipmap;
+  uint32_t* entries;     // clipmap.entryCount()
+  uint32_t* timestamps;  // per slot: last frame it was sampled (0: never)
+  BrickKey* inverse;     // per slot: the brick it holds, level NO_LEVEL if none
+  const uint32_t* freeSlots;
+  uint32_t freeCount;     // valid entries of freeSlots
+  BrickKey* requests;     // production queue
+  uint32_t requestCapacity;
+  uint32_t* counters;  // CacheCounter
+  uint32_t frame;      // current frame stamp (>= 1)
+  uint32_t degraded;   // nonzero: no production; rays fall back to coarser resident levels
+  float voxelSize0;
+};
+
+}  // namespace gvdp

@@ -1,0 +1,56 @@
+// The clipmap geometry of a frame (paper 3.2): per level, a window of W^3 bricks centred on the
+// eye, addressed toroidally (global brick coordinate mod W) so that a moving window keeps the
+// entries it still covers. Also the global brick coordinates of the frame's local origin per
+// level, to turn the local brick coordinates of the ray march into global ones.
+#pragma once
+
+#include "gvdp/cache/brick_key.h"
+#include "gvdp/render/frame.h"
+
+namespace gvdp {
+
+struct Clipmap {
+  int width;  // W, bricks per axis and level
+  int levels;
+  Vec3i windowOrigin[MAX_LEVELS];      // global brick coordinates of each window's min corner
+  Vec3i localOriginBrick[MAX_LEVELS];  // global brick coordinates of the local origin
+
+  GVDP_HD Vec3i globalBrick(int level, Vec3i localBrick) const {
+    return localOriginBrick[level] + localBrick;
+  }
+  GVDP_HD bool inWindow(int level, Vec3i g) const {
+    Vec3i d = g - windowOrigin[level];
+    return d.x >= 0 && d.y >= 0 && d.z >= 0 && d.x < width && d.y < width && d.z < width;
+  }
+  GVDP_HD uint32_t entryIndex(int level, Vec3i g) const {
+    uint32_t w = static_cast<uint32_t>(width);
+    return ((static_cast<uint32_t>(level) * w + static_cast<uint32_t>(floorMod(g.z, width))) * w +
+            static_cast<uint32_t>(floorMod(g.y, width))) *
+               w +
+           static_cast<uint32_t>(floorMod(g.x, width));
+  }
+  size_t entryCount() const {
+    return static_cast<size_t>(levels) * static_cast<size_t>(width) * width * width;
+  }
+};
+
+// The clipmap of a frame: windows centred on the eye's brick at every level.
+inline Clipmap clipmapOf(const FrameSetup& frame) {
+  Clipmap c{};
+  c.width = clipmapWidthFor(frame.lod.pixelAngle);
+  c.levels = frame.lod.levels;
+  for (int level = 0; level < c.levels; ++level) {
+    double brickSize = static_cast<double>(frame.lod.voxelSize(level)) * BRICK_WIDTH;
+    // The local origin is a multiple of the coarsest brick: exact integers at every level.
+    Vec3i origin{static_cast<int>(std::llround(frame.localOrigin.x / brickSize)),
+                 static_cast<int>(std::llround(frame.localOrigin.y / brickSize)),
+                 static_cast<int>(std::llround(frame.localOrigin.z / brickSize))};
+    c.localOriginBrick[level] = origin;
+    Vec3i eye = floorToInt(frame.eye / static_cast<float>(brickSize));
+    int half = c.width / 2;
+    c.windowOrigin[level] = origin + eye - Vec3i{half, half, half};
+  }
+  return c;
+}
+
+}  // namespace gvdp

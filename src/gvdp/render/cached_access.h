@@ -1,0 +1,63 @@
+// The cached side of Algorithm 1: how a ray reads the clipmap. A resident brick is sampled from
+// the pool (and its timestamp touched); an EMPTY brick, or an EMPTY coarser ancestor, is skipped
+// whole; a MISSING brick is claimed with a CAS (the winner queues its production) and the ray
+// stops, as on IN_PRODUCTION. In a degraded frame (no free slot left) nothing is produced: the
+// ray samples the nearest resident coarser level, or passes through.
+#pragma once
+
+#include "gvdp/base/atomics.h"
+#include "gvdp/cache/cache_ops.h"
+#include "gvdp/render/march.h"
+
+namespace gvdp {
+
+// Pool provides: Vec4f sample(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
+// coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates.
+template <class Pool>
+struct CachedAccess {
+  const CacheView& cache;
+  const Pool& pool;
+  const Lod& lod;
+
+  GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
+    Vec3i g = cache.clipmap.globalBrick(level, localBrick);
+    return loadAcquire32(&cache.entries[cache.clipmap.entryIndex(level, g)]);
+  }
+
+  GVDP_HD BrickLookup resident(uint32_t slot, int level, Vec3i brick) const {
+    if (loadRelaxed32(&cache.timestamps[slot]) != cache.frame)
+      storeRelaxed32(&cache.timestamps[slot], cache.frame);
+    return {BrickState::Resident, slot, level, brick};
+  }
+
+  GVDP_HD BrickLookup lookup(int level, Vec3i brick) const {
+    Vec3i g = cache.clipmap.globalBrick(level, brick);
+    // The clipmap width covers every sample of a level (lod_test checks the formula); a brick
+    // outside its window could only alias another one, so it is never read.
+    if (!cache.clipmap.inWindow(level, g)) return {BrickState::Empty, 0u, level, brick};
+    uint32_t* entry = &cache.entries[cache.clipmap.entryIndex(level, g)];
+    uint32_t e = loadAcquire32(entry);
+    if (isSlot(e)) return resident(e, level, brick);
+    if (e == ENTRY_EMPTY) return {BrickState::Empty, 0u, level, brick};
+    // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
+    Vec3i a = brick;
+    for (int up = level + 1; up < lod.levels; ++up) {
+      a = {floorDiv(a.x, 2), floorDiv(a.y, 2), floorDiv(a.z, 2)};
+      uint32_t ea = entryAt(up, a);
+      if (ea == ENTRY_EMPTY) return {BrickState::Empty, 0u, up, a};
+      if (cache.degraded && isSlot(ea)) return resident(ea, up, a);
+    }
+    if (cache.degraded) return {BrickState::Empty, 0u, level, brick};  // nothing to show
+    if (e == ENTRY_MISSING && atomicCas32(entry, ENTRY_MISSING, ENTRY_IN_PRODUCTION) == ENTRY_MISSING)
+      requestBrick(cache, level, g);
+    return {BrickState::Stop, 0u, level, brick};
+  }
+
+  GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) const {
+    Vec3f v = p / lod.voxelSize(b.level);
+    Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
+    return pool.sample(b.slot, origin, v);
+  }
+};
+
+}  // namespace gvdp

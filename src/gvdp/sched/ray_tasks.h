@@ -1,0 +1,49 @@
+// Per-ray and per-brick task bodies shared by the cached schedulers (sp, and later dp, pt) on
+// both backends: the first render pass in 8x8 pixel tiles (so that a warp holds a compact
+// 8x4 block), a render task resuming a saved ray, production of one brick sample, and the final
+// resolve that counts unfinished pixels.
+#pragma once
+
+#include "gvdp/render/cached_access.h"
+#include "gvdp/render/frame.h"
+#include "gvdp/render/produce.h"
+#include "gvdp/render/shade.h"
+
+namespace gvdp {
+
+constexpr int TILE = 8;
+
+GVDP_HD GVDP_INLINE int tileCount(const FrameSetup& f) {
+  return ((f.width + TILE - 1) / TILE) * ((f.height + TILE - 1) / TILE);
+}
+
+// Pixel of item i of the tiled first pass, or -1 outside the image (partial edge tiles).
+GVDP_HD GVDP_INLINE int tiledPixel(const FrameSetup& f, int i) {
+  int tilesX = (f.width + TILE - 1) / TILE;
+  int tile = i / (TILE * TILE), inTile = i % (TILE * TILE);
+  int x = (tile % tilesX) * TILE + inTile % TILE;
+  int y = (tile / tilesX) * TILE + inTile / TILE;
+  return x < f.width && y < f.height ? y * f.width + x : -1;
+}
+
+// Algorithm 1 for one ray from its saved state; true when it stopped on a missing brick (its
+// state is saved and it must be relaunched after production).
+template <class Pool>
+GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, const Pool& pool,
+                                   RayState* payload, int pixel) {
+  Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
+  RayState s = payload[pixel];
+  CachedAccess<Pool> access{cache, pool, f.lod};
+  bool stopped = march(ray, f.lod, s, access) == MarchResult::Stopped;
+  payload[pixel] = s;
+  return stopped;
+}
+
+GVDP_HD GVDP_INLINE Rgba8 resolveRay(const FrameSetup& f, const RayState* payload, int pixel,
+                                     bool* unfinished) {
+  Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
+  *unfinished = !payload[pixel].finished(f.lod);
+  return resolvePixel(payload[pixel].colour, ray.d);
+}
+
+}  // namespace gvdp

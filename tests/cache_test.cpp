@@ -1,0 +1,137 @@
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <set>
+
+#include "gvdp/cache/brick_cache_cpu.h"
+#include "gvdp/render/cached_access.h"
+#include "gvdp/render/pool_cpu.h"
+#include "gvdp/world/registry.h"
+
+namespace gvdp {
+
+namespace {
+
+FrameSetup frameAt(Vec3d position, int index) {
+  const SceneInfo& scene = findScene("perlin");
+  return makeFrame({position, 0.3f, 0.0f}, scene.params, 64, 40, 5, index);
+}
+
+// Every resident slot is mapped by exactly one in-window entry and maps back to it; nothing is
+// left in production.
+void expectConsistent(const BrickCacheCpu& c) {
+  const Clipmap& m = c.clipmap();
+  std::set<uint32_t> seen;
+  for (size_t i = 0; i < c.entries().size(); ++i) {
+    uint32_t e = c.entries()[i];
+    ASSERT_NE(e, ENTRY_IN_PRODUCTION) << "entry " << i;
+    if (!isSlot(e)) continue;
+    ASSERT_LT(e, c.poolBricks());
+    ASSERT_TRUE(seen.insert(e).second) << "slot " << e << " mapped twice";
+    const BrickKey& k = c.inverse()[e];
+    ASSERT_NE(k.level, NO_LEVEL) << "slot " << e << " mapped but unowned";
+    EXPECT_EQ(m.entryIndex(k.level, k.brick), i);
+    EXPECT_TRUE(m.inWindow(k.level, k.brick)) << "resident brick outside its window";
+  }
+  for (uint32_t s = 0; s < c.poolBricks(); ++s) {
+    if (c.inverse()[s].level != NO_LEVEL) {
+      EXPECT_TRUE(seen.count(s)) << "slot " << s << " owned but unmapped";
+    }
+  }
+}
+
+// Requests and produces the bricks under random samples around the eye, as rays would.
+void touchRandomBricks(BrickCacheCpu& c, const FrameSetup& f, std::mt19937& rng, int n) {
+  CacheView v = c.view();
+  CpuPool pool{c.texels()};
+  CachedAccess<CpuPool> access{v, pool, f.lod};
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < n; ++i) {
+    int level = static_cast<int>(rng() % static_cast<unsigned>(f.lod.levels));
+    float reach = f.lod.levelEnd(level) * 0.9f;
+    Vec3f p = f.eye + Vec3f{u(rng), u(rng), u(rng)} * reach;
+    access.lookup(level, floorToInt(p / f.lod.voxelSize(level) * (1.0f / BRICK_WIDTH)));
+  }
+  uint32_t requests = c.counters()[COUNTER_REQUESTS];
+  for (uint32_t i = 0; i < requests; ++i) c.produce(f.scene, v, c.requests()[i]);
+  c.clearRequests();
+}
+
+}  // namespace
+
+TEST(Cache, InvariantsHoldOverRandomCameraSequences) {
+  std::mt19937 rng(17);
+  BrickCacheCpu cache(300);  // small: forces LRU evictions
+  Vec3d eye{10.5, 8.0, 0.5};
+  std::uniform_real_distribution<double> step(-3.0, 3.0);
+  uint64_t evicted = 0, produced = 0;
+  for (int frame = 0; frame < 40; ++frame) {
+    eye = eye + Vec3d{step(rng), step(rng) * 0.2, step(rng)} * (frame % 7 == 6 ? 30.0 : 1.0);
+    FrameSetup f = frameAt(eye, frame);
+    cache.beginFrame(f);
+    expectConsistent(cache);
+    touchRandomBricks(cache, f, rng, 400);
+    expectConsistent(cache);
+    evicted += cache.frameStats().evicted;
+    produced += cache.frameStats().produced;
+  }
+  EXPECT_GT(produced, 300u) << "the test must overflow the pool";
+  EXPECT_GT(evicted, 0u);
+}
+
+TEST(Cache, SlabsLeavingTheWindowAreResetAndTheirSlotsFreed) {
+  BrickCacheCpu cache(4096);
+  std::mt19937 rng(5);
+  FrameSetup f0 = frameAt({10.5, 8.0, 0.5}, 0);
+  cache.beginFrame(f0);
+  touchRandomBricks(cache, f0, rng, 600);
+  std::vector<BrickKey> level0;
+  for (uint32_t s = 0; s < cache.poolBricks(); ++s)
+    if (cache.inverse()[s].level == 0) level0.push_back(cache.inverse()[s]);
+  ASSERT_FALSE(level0.empty());
+  // Move far along x: every level-0 brick leaves the level-0 window.
+  double far = 2.0 * cache.clipmap().width * BRICK_WIDTH * f0.lod.voxelSize(0);
+  FrameSetup f1 = frameAt({10.5 + far, 8.0, 0.5}, 1);
+  cache.beginFrame(f1);
+  expectConsistent(cache);
+  for (const BrickKey& k : level0) {
+    EXPECT_FALSE(cache.clipmap().inWindow(0, k.brick));
+    EXPECT_EQ(cache.entries()[cache.clipmap().entryIndex(0, k.brick)], ENTRY_MISSING);
+  }
+  for (uint32_t s = 0; s < cache.poolBricks(); ++s) EXPECT_NE(cache.inverse()[s].level, 0);
+  EXPECT_GE(cache.frameStats().evicted, level0.size());
+}
+
+TEST(Cache, BrickBordersAreSeamless) {
+  // Two neighbouring bricks, sampled exactly on their shared face, give the same value.
+  BrickCacheCpu cache(64);
+  FrameSetup f = frameAt({10.5, 8.0, 0.5}, 0);
+  cache.beginFrame(f);
+  CacheView v = cache.view();
+  const Clipmap& m = cache.clipmap();
+  int level = 1, tested = 0;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.0f, 8.0f);
+  for (int y = -3; y <= 3 && tested < 200; ++y)
+    for (int x = -3; x <= 3 && tested < 200; ++x) {
+      Vec3i a{x, y, 0}, b{x + 1, y, 0};
+      BrickKey ka{m.globalBrick(level, a), level}, kb{m.globalBrick(level, b), level};
+      cache.produce(f.scene, v, ka);
+      cache.produce(f.scene, v, kb);
+      uint32_t sa = cache.entries()[m.entryIndex(level, ka.brick)];
+      uint32_t sb = cache.entries()[m.entryIndex(level, kb.brick)];
+      if (!isSlot(sa) || !isSlot(sb)) continue;
+      CpuPool pool{cache.texels()};
+      for (int k = 0; k < 20; ++k, ++tested) {
+        Vec3f p{8.0f * (x + 1), 8.0f * y + u(rng), u(rng)};  // on the face, voxel units
+        Vec4f ca = pool.sample(sa, {8 * a.x, 8 * a.y, 8 * a.z}, p);
+        Vec4f cb = pool.sample(sb, {8 * b.x, 8 * b.y, 8 * b.z}, p);
+        EXPECT_EQ(ca.x, cb.x);
+        EXPECT_EQ(ca.w, cb.w);
+      }
+    }
+  EXPECT_GT(tested, 50) << "no pair of resident neighbours found";
+}
+
+}  // namespace gvdp

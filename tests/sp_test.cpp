@@ -1,0 +1,110 @@
+#include <gtest/gtest.h>
+
+#include "gvdp/bench/sequence.h"
+#include "test_util.h"
+
+namespace gvdp {
+
+namespace {
+struct Renders {
+  std::vector<Image> images;
+  std::vector<FrameStats> stats;
+};
+
+Renders renderRun(const std::string& scene, SchedulerKind kind, Backend backend, int frames, int w, int h,
+        uint32_t poolBricks = 0, Movement movement = Movement::Walkthrough) {
+  SequenceOptions o;
+  o.scene = scene;
+  o.frames = frames;
+  o.width = w;
+  o.height = h;
+  o.movement = movement;
+  o.scheduler = {backend, kind, poolBricks};
+  Renders r;
+  renderSequence(o, [&](const Image& im, const FrameStats& s) {
+    r.images.push_back(im);
+    r.stats.push_back(s);
+  });
+  return r;
+}
+}  // namespace
+
+class SpTest : public ::testing::TestWithParam<int> {
+ protected:
+  std::string scene() const { return std::string(allScenes()[GetParam()].name); }
+};
+
+// The cache holds exactly what direct evaluates on the fly: on the CPU (same trilinear code,
+// producers conservative) the images agree; the bar is 45 dB.
+TEST_P(SpTest, MatchesDirectOnAWalkthrough) {
+  Renders sp = renderRun(scene(), SchedulerKind::Sp, Backend::Cpu, 3, 96, 60);
+  Renders direct = renderRun(scene(), SchedulerKind::Direct, Backend::Cpu, 3, 96, 60);
+  for (int f = 0; f < 3; ++f) {
+    double db = psnr(sp.images[f], direct.images[f]);
+    std::printf("[ measure ] %s frame %d sp vs direct (cpu, 96x60): PSNR %.2f dB\n",
+                scene().c_str(), f, db);
+    EXPECT_GE(db, 45.0) << scene() << " frame " << f;
+    EXPECT_EQ(sp.stats[f].unfinishedPixels, 0);
+    EXPECT_FALSE(sp.stats[f].degraded);
+    EXPECT_GE(sp.stats[f].passes, 2) << "a first frame needs production";
+  }
+  EXPECT_GT(sp.stats[0].cache.produced, 0u);
+}
+
+TEST_P(SpTest, IsDeterministic) {
+  Renders a = renderRun(scene(), SchedulerKind::Sp, Backend::Cpu, 3, 64, 40);
+  Renders b = renderRun(scene(), SchedulerKind::Sp, Backend::Cpu, 3, 64, 40);
+  for (int f = 0; f < 3; ++f) EXPECT_EQ(a.images[f].pixels, b.images[f].pixels) << "frame " << f;
+}
+
+// A pool far smaller than a frame's working set: every frame completes, degraded.
+TEST_P(SpTest, TinyPoolDegradesButFinishesEveryPixel) {
+  Renders r = renderRun(scene(), SchedulerKind::Sp, Backend::Cpu, 3, 96, 60, 64);
+  for (const FrameStats& s : r.stats) {
+    EXPECT_EQ(s.unfinishedPixels, 0);
+    EXPECT_TRUE(s.degraded);
+    EXPECT_LE(s.cache.resident, 64u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, SpTest, ::testing::Range(0, SCENE_COUNT));
+
+TEST(Sp, CacheCarriesOverFrames) {
+  // A still camera produces nothing after the first frame and renders the same image.
+  Renders r = renderRun("aligned-spheres", SchedulerKind::Sp, Backend::Cpu, 3, 64, 40, 0, Movement::Forward);
+  Renders still = renderRun("random-spheres", SchedulerKind::Sp, Backend::Cpu, 1, 64, 40);
+  EXPECT_GT(still.stats[0].cache.produced, 0u);
+  EXPECT_LT(r.stats[2].cache.produced, r.stats[0].cache.produced);
+}
+
+class GpuSpTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(GpuSpTest, MatchesCpuSp) {
+  GVDP_REQUIRE_GPU();
+  std::string scene(allScenes()[GetParam()].name);
+  Renders cpu = renderRun(scene, SchedulerKind::Sp, Backend::Cpu, 3, 320, 200);
+  Renders gpu = renderRun(scene, SchedulerKind::Sp, Backend::Cuda, 3, 320, 200);
+  Renders gpuDirect = renderRun(scene, SchedulerKind::Direct, Backend::Cuda, 1, 320, 200);
+  for (int f = 0; f < 3; ++f) {
+    double db = psnr(cpu.images[f], gpu.images[f]);
+    std::printf("[ measure ] %s frame %d sp cpu vs cuda 320x200: PSNR %.2f dB\n", scene.c_str(), f, db);
+    EXPECT_GE(db, 40.0);
+    EXPECT_EQ(gpu.stats[f].unfinishedPixels, 0);
+  }
+  std::printf("[ measure ] %s sp cuda vs direct cuda 320x200: PSNR %.2f dB\n", scene.c_str(),
+              psnr(gpu.images[0], gpuDirect.images[0]));
+}
+
+TEST_P(GpuSpTest, TinyPoolFinishesEveryPixel) {
+  GVDP_REQUIRE_GPU();
+  Renders r = renderRun(std::string(allScenes()[GetParam()].name), SchedulerKind::Sp, Backend::Cuda, 3, 320,
+              200, 64);
+  for (const FrameStats& s : r.stats) {
+    EXPECT_EQ(s.unfinishedPixels, 0);
+    EXPECT_TRUE(s.degraded);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, GpuSpTest, ::testing::Range(0, SCENE_COUNT));
+
+}  // namespace gvdp
