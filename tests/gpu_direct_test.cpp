@@ -17,6 +17,7 @@ TEST_P(GpuDirectTest, MatchesTheCpuRender) {
   o.width = 320;
   o.height = 200;
   o.frames = 1;
+  o.scheduler.kind = SchedulerKind::Direct;
   Image cpu, gpu;
   o.scheduler.backend = Backend::Cpu;
   renderSequence(o, [&](const Image& im, const FrameStats&) { cpu = im; });

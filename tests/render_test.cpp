@@ -14,6 +14,7 @@ Image renderOne(const std::string& scene, int w, int h, Vec3d origin = {0, 0, 0}
   o.width = w;
   o.height = h;
   o.origin = origin;
+  o.scheduler.kind = SchedulerKind::Direct;
   std::unique_ptr<Scheduler> s = makeScheduler(o.scheduler);
   Image image;
   FrameStats stats = s->render(frameOf(o, frame), image);

@@ -110,6 +110,15 @@ int runRender(const RenderFlags& flags) {
     std::fflush(stdout);
   });
   writeStatsJson(dir + "/stats.json", o, frames, memory);
+  if (!memory.empty()) {
+    size_t total = 0;
+    std::printf("memory:");
+    for (const MemoryItem& m : memory) {
+      std::printf(" %s %.1f MB,", m.name.c_str(), static_cast<double>(m.bytes) / 1e6);
+      total += m.bytes;
+    }
+    std::printf(" total %.1f MB\n", static_cast<double>(total) / 1e6);
+  }
   double total = 0.0;
   for (const FrameStats& s : frames) total += s.ms;
   double mean = total / static_cast<double>(frames.size());

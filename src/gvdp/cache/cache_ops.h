@@ -20,7 +20,7 @@ struct SlabJobs {
   int jobCount;
   SlabJob jobs[3 * MAX_LEVELS];
   uint32_t offset[3 * MAX_LEVELS + 1];
-  uint32_t total() const { return offset[jobCount]; }
+  GVDP_HD uint32_t total() const { return offset[jobCount]; }
 };
 
 // Frees the slot an entry holds (the slot becomes the least recently used) and resets it.

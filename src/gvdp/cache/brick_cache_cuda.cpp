@@ -1,0 +1,146 @@
+#include "gvdp/cache/brick_cache_cuda.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include <cuda_runtime.h>
+
+#include "gvdp/cache/cache_kernels.h"
+
+namespace gvdp {
+
+BrickCacheCuda::BrickCacheCuda(uint32_t poolBricks)
+    : poolBricks_(poolBricks),
+      capacity_(freeListCapacity(poolBricks)),
+      timestamps_(poolBricks),
+      counters_(COUNTER_COUNT),
+      inverse_(poolBricks),
+      sortKeysIn_(poolBricks),
+      sortKeysOut_(poolBricks),
+      sortValuesIn_(poolBricks),
+      sortValuesOut_(poolBricks),
+      freeCount_(1),
+      sortTemp_(lruSortTempBytes(poolBricks)) {
+  GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
+  // Atlas of slots, at most 16384 texels (1638 slots) per axis.
+  const int MAX_AXIS = 16384 / BRICK_SAMPLES;
+  int sx = std::min(MAX_AXIS, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(poolBricks)))));
+  int sy = std::min(MAX_AXIS, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(poolBricks) / sx))));
+  int sz = static_cast<int>((poolBricks + static_cast<uint32_t>(sx * sy) - 1) / static_cast<uint32_t>(sx * sy));
+  GVDP_INPUT_CHECK(sz <= MAX_AXIS, "bad --pool-bricks ", poolBricks, " (larger than a 3D texture)");
+  cudaChannelFormatDesc format = cudaCreateChannelDesc<uchar4>();
+  cudaExtent extent = make_cudaExtent(static_cast<size_t>(sx) * BRICK_SAMPLES,
+                                      static_cast<size_t>(sy) * BRICK_SAMPLES,
+                                      static_cast<size_t>(sz) * BRICK_SAMPLES);
+  GVDP_CUDA_CHECK(cudaMalloc3DArray(&atlas_, &format, extent, cudaArraySurfaceLoadStore));
+  atlasBytes_ = extent.width * extent.height * extent.depth * 4;
+
+  cudaResourceDesc resource{};
+  resource.resType = cudaResourceTypeArray;
+  resource.res.array.array = atlas_;
+  cudaTextureDesc texture{};
+  texture.addressMode[0] = texture.addressMode[1] = texture.addressMode[2] = cudaAddressModeClamp;
+  texture.filterMode = cudaFilterModeLinear;
+  texture.readMode = cudaReadModeNormalizedFloat;
+  texture.normalizedCoords = 0;
+  GVDP_CUDA_CHECK(cudaCreateTextureObject(&pool_.texture, &resource, &texture, nullptr));
+  GVDP_CUDA_CHECK(cudaCreateSurfaceObject(&pool_.surface, &resource));
+  pool_.slotsX = sx;
+  pool_.slotsY = sy;
+}
+
+BrickCacheCuda::~BrickCacheCuda() {
+  cudaDestroyTextureObject(pool_.texture);
+  cudaDestroySurfaceObject(pool_.surface);
+  cudaFreeArray(atlas_);
+}
+
+void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
+  ClipmapTracker::Update u = tracker_.next(frame);
+  clipmap_ = u.clipmap;
+  GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));
+  degraded_ = false;
+  ++frame_;
+  if (u.fullReset) {
+    if (entries_.size() != clipmap_.entryCount()) entries_ = DeviceBuffer<uint32_t>(clipmap_.entryCount());
+    GVDP_CUDA_CHECK(cudaMemset(entries_.data(), 0xff, entries_.bytes()));  // ENTRY_MISSING
+    GVDP_CUDA_CHECK(cudaMemset(timestamps_.data(), 0, timestamps_.bytes()));
+    GVDP_CUDA_CHECK(cudaMemset(inverse_.data(), 0xff, inverse_.bytes()));  // level NO_LEVEL
+    resident_ = 0;
+  } else {
+    launchResetSlabs(view(), u.slabs);
+  }
+  size_t rays = static_cast<size_t>(frame.pixelCount());
+  if (requests_.size() < rays) requests_ = DeviceBuffer<BrickKey>(rays);
+  refill();
+  refills_ = 0;
+}
+
+uint32_t BrickCacheCuda::refill() {
+  launchPrepareLruSort(timestamps_.data(), sortKeysIn_.data(), sortValuesIn_.data(), poolBricks_);
+  int endBit = std::max(1, static_cast<int>(std::bit_width(frame_)));
+  lruSort(sortTemp_.data(), sortTemp_.size(), sortKeysIn_.data(), sortKeysOut_.data(),
+          sortValuesIn_.data(), sortValuesOut_.data(), poolBricks_, endBit);
+  GVDP_CUDA_CHECK(cudaMemset(freeCount_.data(), 0, sizeof(uint32_t)));
+  launchCountOlder(sortKeysOut_.data(), capacity_, frame_, freeCount_.data());
+  GVDP_CUDA_CHECK(cudaMemcpy(&freeCountHost_, freeCount_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost));
+  GVDP_CUDA_CHECK(cudaMemset(counters_.data() + COUNTER_FREE_NEXT, 0, sizeof(uint32_t)));
+  // The free slot list is the head of the sorted slots (oldest first).
+  launchUnmapSlots(view(), sortValuesOut_.data(), freeCountHost_);
+  GVDP_CUDA_CHECK(cudaGetLastError());
+  ++refills_;
+  return freeCountHost_;
+}
+
+CacheView BrickCacheCuda::view() const {
+  CacheView v{};
+  v.clipmap = clipmap_;
+  v.entries = entries_.data();
+  v.timestamps = timestamps_.data();
+  v.inverse = inverse_.data();
+  v.freeSlots = sortValuesOut_.data();
+  v.freeCount = freeCountHost_;
+  v.requests = requests_.data();
+  v.requestCapacity = static_cast<uint32_t>(requests_.size());
+  v.counters = counters_.data();
+  v.frame = frame_;
+  v.degraded = degraded_ ? 1u : 0u;
+  return v;
+}
+
+void BrickCacheCuda::readCounters(uint32_t* out) const {
+  GVDP_CUDA_CHECK(cudaMemcpy(out, counters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost));
+}
+
+void BrickCacheCuda::clearRequests() {
+  GVDP_CUDA_CHECK(cudaMemset(counters_.data() + COUNTER_REQUESTS, 0, sizeof(uint32_t)));
+}
+
+CacheStats BrickCacheCuda::frameStats() {
+  uint32_t c[COUNTER_COUNT];
+  readCounters(c);
+  CacheStats s;
+  s.produced = c[COUNTER_PRODUCED];
+  s.empty = c[COUNTER_EMPTY];
+  s.failed = c[COUNTER_FAILED];
+  s.evicted = c[COUNTER_EVICTED];
+  s.requested = s.produced + s.empty + s.failed;
+  resident_ = resident_ + s.produced - s.evicted;
+  s.resident = resident_;
+  s.refills = refills_;
+  return s;
+}
+
+MemoryReport BrickCacheCuda::memory() const {
+  return {{"brick_pool", atlasBytes_},
+          {"indirection_table", entries_.bytes()},
+          {"inverse_table", inverse_.bytes()},
+          {"timestamps", timestamps_.bytes()},
+          {"free_slot_list_and_lru_sort",
+           sortKeysIn_.bytes() + sortKeysOut_.bytes() + sortValuesIn_.bytes() +
+               sortValuesOut_.bytes() + sortTemp_.bytes()},
+          {"request_queue", requests_.bytes()}};
+}
+
+}  // namespace gvdp

@@ -1,0 +1,21 @@
+// Launchers of the CUDA sp kernels (sp_kernels.cu), all on the default stream.
+#pragma once
+
+#include "gvdp/cache/cache_view.h"
+#include "gvdp/render/march.h"
+#include "gvdp/render/pool_gpu.h"
+
+namespace gvdp {
+
+// passCounters[0]: rays stopped in the pass (appended to `next`); [1]: unfinished at resolve.
+void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+                           RayState* payload, uint32_t* next, uint32_t* passCounters);
+void launchRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+                      RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
+                      uint32_t* passCounters);
+void launchProduce(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+                   uint32_t requestCount);
+void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
+                   uint32_t* passCounters);
+
+}  // namespace gvdp

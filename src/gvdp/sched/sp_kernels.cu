@@ -1,0 +1,111 @@
+// CUDA kernels of the sp scheduler: render passes (Algorithm 1 over the tiled screen, then over
+// the compacted list of stopped rays), production (Algorithm 2, one block per brick) and resolve.
+#include "gvdp/sched/ray_tasks.h"
+#include "gvdp/sched/sp_cuda.h"
+
+namespace gvdp {
+namespace {
+
+constexpr int RENDER_BLOCK = 128;
+constexpr int PRODUCE_BLOCK = 512;
+
+// Thread compaction (seed 004): the stopped rays of a warp are appended with one atomic, so the
+// next pass runs over full warps of live rays only. Every lane of the warp must call it.
+__device__ void appendStopped(bool stopped, uint32_t pixel, uint32_t* next, uint32_t* count) {
+  unsigned mask = __ballot_sync(0xffffffffu, stopped);
+  if (mask == 0) return;
+  int lane = threadIdx.x & 31, leader = __ffs(mask) - 1;
+  uint32_t base = 0;
+  if (lane == leader) base = atomicAdd(count, static_cast<uint32_t>(__popc(mask)));
+  base = __shfl_sync(0xffffffffu, base, leader);
+  if (stopped) next[base + __popc(mask & ((1u << lane) - 1u))] = pixel;
+}
+
+__global__ void __launch_bounds__(RENDER_BLOCK)
+    firstRenderPassKernel(FrameSetup f, CacheView cache, GpuPool pool, RayState* payload,
+                          uint32_t* next, uint32_t* passCounters) {
+  int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
+  bool stopped = false;
+  if (pixel >= 0) {
+    payload[pixel] = initialRayState();
+    stopped = renderRay(f, cache, pool, payload, pixel);
+  }
+  appendStopped(stopped, static_cast<uint32_t>(pixel), next, &passCounters[0]);
+}
+
+__global__ void __launch_bounds__(RENDER_BLOCK)
+    renderPassKernel(FrameSetup f, CacheView cache, GpuPool pool, RayState* payload,
+                     const uint32_t* live, uint32_t liveCount, uint32_t* next,
+                     uint32_t* passCounters) {
+  uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  uint32_t pixel = i < liveCount ? live[i] : 0u;
+  bool stopped = i < liveCount && renderRay(f, cache, pool, payload, static_cast<int>(pixel));
+  appendStopped(stopped, pixel, next, &passCounters[0]);
+}
+
+// Algorithm 2: one block per requested brick, one thread per sample (two per thread here).
+__global__ void __launch_bounds__(PRODUCE_BLOCK)
+    produceKernel(FrameSetup f, CacheView cache, GpuPool pool) {
+  __shared__ uint32_t slot;
+  BrickKey key = cache.requests[blockIdx.x];
+  Rgba8 values[2];
+  bool empty = true;
+  for (int k = 0; k < 2; ++k) {
+    int s = static_cast<int>(threadIdx.x) + k * PRODUCE_BLOCK;
+    if (s < BRICK_SAMPLE_COUNT) {
+      VoxelSample v = produceBrickSample(f.scene, key, s);
+      values[k] = v.rgba;
+      empty = empty && v.empty;
+    }
+  }
+  empty = __syncthreads_and(empty);
+  if (threadIdx.x == 0) slot = empty ? MAX_SLOTS : takeFreeSlot(cache);
+  __syncthreads();
+  if (!empty && slot != MAX_SLOTS) {
+    for (int k = 0; k < 2; ++k) {
+      int s = static_cast<int>(threadIdx.x) + k * PRODUCE_BLOCK;
+      if (s < BRICK_SAMPLE_COUNT) pool.write(slot, s, values[k]);
+    }
+    __threadfence();
+  }
+  __syncthreads();
+  if (threadIdx.x == 0) publishBrick(cache, key, empty, slot);
+}
+
+__global__ void resolveKernel(FrameSetup f, const RayState* payload, uint32_t* image,
+                              uint32_t* passCounters) {
+  int pixel = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  if (pixel >= f.pixelCount()) return;
+  bool unfinished = false;
+  image[pixel] = resolveRay(f, payload, pixel, &unfinished);
+  if (unfinished) atomicAdd(&passCounters[1], 1u);
+}
+
+}  // namespace
+
+void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+                           RayState* payload, uint32_t* next, uint32_t* passCounters) {
+  unsigned items = static_cast<unsigned>(tileCount(f) * TILE * TILE);
+  firstRenderPassKernel<<<(items + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK>>>(
+      f, cache, pool, payload, next, passCounters);
+}
+
+void launchRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+                      RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
+                      uint32_t* passCounters) {
+  renderPassKernel<<<(liveCount + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK>>>(
+      f, cache, pool, payload, live, liveCount, next, passCounters);
+}
+
+void launchProduce(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+                   uint32_t requestCount) {
+  if (requestCount) produceKernel<<<requestCount, PRODUCE_BLOCK>>>(f, cache, pool);
+}
+
+void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
+                   uint32_t* passCounters) {
+  unsigned n = static_cast<unsigned>(f.pixelCount());
+  resolveKernel<<<(n + 255) / 256, 256>>>(f, payload, image, passCounters);
+}
+
+}  // namespace gvdp
