@@ -11,8 +11,8 @@ struct Renders {
   std::vector<FrameStats> stats;
 };
 
-Renders renderRun(const std::string& scene, SchedulerKind kind, Backend backend, int frames, int w, int h,
-        uint32_t poolBricks = 0, Movement movement = Movement::Walkthrough) {
+Renders renderRun(const std::string& scene, SchedulerKind kind, Backend backend, int frames, int w,
+                  int h, uint32_t poolBricks = 0, Movement movement = Movement::Walkthrough) {
   SequenceOptions o;
   o.scene = scene;
   o.frames = frames;
@@ -71,7 +71,8 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SpTest, ::testing::Range(0, SCENE_COUNT));
 
 TEST(Sp, CacheCarriesOverFrames) {
   // A still camera produces nothing after the first frame and renders the same image.
-  Renders r = renderRun("aligned-spheres", SchedulerKind::Sp, Backend::Cpu, 3, 64, 40, 0, Movement::Forward);
+  Renders r = renderRun("aligned-spheres", SchedulerKind::Sp, Backend::Cpu, 3, 64, 40, 0,
+                        Movement::Forward);
   Renders still = renderRun("random-spheres", SchedulerKind::Sp, Backend::Cpu, 1, 64, 40);
   EXPECT_GT(still.stats[0].cache.produced, 0u);
   EXPECT_LT(r.stats[2].cache.produced, r.stats[0].cache.produced);
@@ -87,7 +88,8 @@ TEST_P(GpuSpTest, MatchesCpuSp) {
   Renders gpuDirect = renderRun(scene, SchedulerKind::Direct, Backend::Cuda, 1, 320, 200);
   for (int f = 0; f < 3; ++f) {
     double db = psnr(cpu.images[f], gpu.images[f]);
-    std::printf("[ measure ] %s frame %d sp cpu vs cuda 320x200: PSNR %.2f dB\n", scene.c_str(), f, db);
+    std::printf("[ measure ] %s frame %d sp cpu vs cuda 320x200: PSNR %.2f dB\n", scene.c_str(), f,
+                db);
     EXPECT_GE(db, 40.0);
     EXPECT_EQ(gpu.stats[f].unfinishedPixels, 0);
   }
@@ -97,8 +99,8 @@ TEST_P(GpuSpTest, MatchesCpuSp) {
 
 TEST_P(GpuSpTest, TinyPoolFinishesEveryPixel) {
   GVDP_REQUIRE_GPU();
-  Renders r = renderRun(std::string(allScenes()[GetParam()].name), SchedulerKind::Sp, Backend::Cuda, 3, 320,
-              200, 64);
+  Renders r = renderRun(std::string(allScenes()[GetParam()].name), SchedulerKind::Sp, Backend::Cuda,
+                        3, 320, 200, 64);
   for (const FrameStats& s : r.stats) {
     EXPECT_EQ(s.unfinishedPixels, 0);
     EXPECT_TRUE(s.degraded);

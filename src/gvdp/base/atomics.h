@@ -18,7 +18,7 @@ GVDP_HD GVDP_INLINE uint32_t atomicCas32(uint32_t* p, uint32_t expected, uint32_
   return atomicCAS(p, expected, desired);
 #else
   std::atomic_ref<uint32_t>(*p).compare_exchange_strong(expected, desired,
-                                                         std::memory_order_acq_rel);
+                                                        std::memory_order_acq_rel);
   return expected;  // the value found: equal to the argument on success
 #endif
 }

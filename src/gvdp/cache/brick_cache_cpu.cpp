@@ -31,7 +31,9 @@ void BrickCacheCpu::beginFrame(const FrameSetup& frame) {
     std::fill(inverse_.begin(), inverse_.end(), BrickKey{{0, 0, 0}, NO_LEVEL});
   } else {
     CacheView v = view();
-    parallelFor(u.slabs.total(), [&](int64_t i) { resetSlabItem(v, u.slabs, static_cast<uint32_t>(i)); }, 4096);
+    parallelFor(
+        u.slabs.total(), [&](int64_t i) { resetSlabItem(v, u.slabs, static_cast<uint32_t>(i)); },
+        4096);
   }
   size_t rays = static_cast<size_t>(frame.pixelCount());
   if (requests_.size() < rays) requests_.resize(rays);
@@ -54,7 +56,8 @@ uint32_t BrickCacheCpu::refill() {
   freeCount_ = n;
   counters_[COUNTER_FREE_NEXT] = 0;
   CacheView v = view();
-  parallelFor(n, [&](int64_t i) { unmapSlot(v, freeSlots_[i]); }, 256);
+  parallelFor(
+      n, [&](int64_t i) { unmapSlot(v, freeSlots_[i]); }, 256);
   ++refills_;
   return n;
 }
@@ -97,8 +100,8 @@ CacheStats BrickCacheCpu::frameStats() const {
   s.failed = counters_[COUNTER_FAILED];
   s.evicted = counters_[COUNTER_EVICTED];
   s.requested = s.produced + s.empty + s.failed;
-  s.resident = static_cast<uint64_t>(
-      std::count_if(inverse_.begin(), inverse_.end(), [](const BrickKey& k) { return k.level != NO_LEVEL; }));
+  s.resident = static_cast<uint64_t>(std::count_if(
+      inverse_.begin(), inverse_.end(), [](const BrickKey& k) { return k.level != NO_LEVEL; }));
   s.refills = refills_;
   return s;
 }

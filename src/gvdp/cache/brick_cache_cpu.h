@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "gvdp/cache/cache_host.h"
-#include "gvdp/world/scene.h"
 #include "gvdp/render/frame.h"
+#include "gvdp/world/scene.h"
 #include "gvdp/world/voxel.h"
 
 namespace gvdp {

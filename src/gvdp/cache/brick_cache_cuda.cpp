@@ -25,9 +25,12 @@ BrickCacheCuda::BrickCacheCuda(uint32_t poolBricks)
   GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
   // Atlas of slots, at most 16384 texels (1638 slots) per axis.
   const int MAX_AXIS = 16384 / BRICK_SAMPLES;
-  int sx = std::min(MAX_AXIS, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(poolBricks)))));
-  int sy = std::min(MAX_AXIS, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(poolBricks) / sx))));
-  int sz = static_cast<int>((poolBricks + static_cast<uint32_t>(sx * sy) - 1) / static_cast<uint32_t>(sx * sy));
+  int sx =
+      std::min(MAX_AXIS, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(poolBricks)))));
+  int sy = std::min(MAX_AXIS,
+                    static_cast<int>(std::ceil(std::sqrt(static_cast<double>(poolBricks) / sx))));
+  int sz = static_cast<int>((poolBricks + static_cast<uint32_t>(sx * sy) - 1) /
+                            static_cast<uint32_t>(sx * sy));
   GVDP_INPUT_CHECK(sz <= MAX_AXIS, "bad --pool-bricks ", poolBricks, " (larger than a 3D texture)");
   cudaChannelFormatDesc format = cudaCreateChannelDesc<uchar4>();
   cudaExtent extent = make_cudaExtent(static_cast<size_t>(sx) * BRICK_SAMPLES,
@@ -63,7 +66,8 @@ void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
   degraded_ = false;
   ++frame_;
   if (u.fullReset) {
-    if (entries_.size() != clipmap_.entryCount()) entries_ = DeviceBuffer<uint32_t>(clipmap_.entryCount());
+    if (entries_.size() != clipmap_.entryCount())
+      entries_ = DeviceBuffer<uint32_t>(clipmap_.entryCount());
     GVDP_CUDA_CHECK(cudaMemset(entries_.data(), 0xff, entries_.bytes()));  // ENTRY_MISSING
     GVDP_CUDA_CHECK(cudaMemset(timestamps_.data(), 0, timestamps_.bytes()));
     GVDP_CUDA_CHECK(cudaMemset(inverse_.data(), 0xff, inverse_.bytes()));  // level NO_LEVEL
@@ -84,7 +88,8 @@ uint32_t BrickCacheCuda::refill() {
           sortValuesIn_.data(), sortValuesOut_.data(), poolBricks_, endBit);
   GVDP_CUDA_CHECK(cudaMemset(freeCount_.data(), 0, sizeof(uint32_t)));
   launchCountOlder(sortKeysOut_.data(), capacity_, frame_, freeCount_.data());
-  GVDP_CUDA_CHECK(cudaMemcpy(&freeCountHost_, freeCount_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost));
+  GVDP_CUDA_CHECK(
+      cudaMemcpy(&freeCountHost_, freeCount_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost));
   GVDP_CUDA_CHECK(cudaMemset(counters_.data() + COUNTER_FREE_NEXT, 0, sizeof(uint32_t)));
   // The free slot list is the head of the sorted slots (oldest first).
   launchUnmapSlots(view(), sortValuesOut_.data(), freeCountHost_);
@@ -137,9 +142,9 @@ MemoryReport BrickCacheCuda::memory() const {
           {"indirection_table", entries_.bytes()},
           {"inverse_table", inverse_.bytes()},
           {"timestamps", timestamps_.bytes()},
-          {"free_slot_list_and_lru_sort",
-           sortKeysIn_.bytes() + sortKeysOut_.bytes() + sortValuesIn_.bytes() +
-               sortValuesOut_.bytes() + sortTemp_.bytes()},
+          {"free_slot_list_and_lru_sort", sortKeysIn_.bytes() + sortKeysOut_.bytes() +
+                                              sortValuesIn_.bytes() + sortValuesOut_.bytes() +
+                                              sortTemp_.bytes()},
           {"request_queue", requests_.bytes()}};
 }
 

@@ -14,7 +14,9 @@ constexpr uint32_t ENTRY_IN_PRODUCTION = 0xfffffffeu;
 constexpr uint32_t ENTRY_EMPTY = 0xfffffffdu;
 constexpr uint32_t MAX_SLOTS = 0xfffffff0u;  // slots are below every special value
 
-GVDP_HD GVDP_INLINE bool isSlot(uint32_t entry) { return entry < MAX_SLOTS; }
+GVDP_HD GVDP_INLINE bool isSlot(uint32_t entry) {
+  return entry < MAX_SLOTS;
+}
 
 struct BrickKey {
   Vec3i brick;  // global brick coordinates at `level`

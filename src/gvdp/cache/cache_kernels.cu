@@ -7,7 +7,9 @@ namespace gvdp {
 namespace {
 
 constexpr int BLOCK = 256;
-inline unsigned blocksFor(uint32_t n) { return (n + BLOCK - 1) / BLOCK; }
+inline unsigned blocksFor(uint32_t n) {
+  return (n + BLOCK - 1) / BLOCK;
+}
 
 __global__ void resetSlabsKernel(CacheView cache, SlabJobs jobs) {
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -41,16 +43,16 @@ void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs) {
   if (jobs.total()) resetSlabsKernel<<<blocksFor(jobs.total()), BLOCK>>>(cache, jobs);
 }
 
-void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n) {
+void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values,
+                          uint32_t n) {
   prepareLruSortKernel<<<blocksFor(n), BLOCK>>>(timestamps, keys, values, n);
 }
 
 size_t lruSortTempBytes(uint32_t n) {
   size_t bytes = 0;
-  cub::DeviceRadixSort::SortPairs(nullptr, bytes, static_cast<const uint32_t*>(nullptr),
-                                  static_cast<uint32_t*>(nullptr),
-                                  static_cast<const uint32_t*>(nullptr),
-                                  static_cast<uint32_t*>(nullptr), n);
+  cub::DeviceRadixSort::SortPairs(
+      nullptr, bytes, static_cast<const uint32_t*>(nullptr), static_cast<uint32_t*>(nullptr),
+      static_cast<const uint32_t*>(nullptr), static_cast<uint32_t*>(nullptr), n);
   return bytes;
 }
 

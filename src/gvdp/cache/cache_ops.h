@@ -41,7 +41,9 @@ GVDP_HD GVDP_INLINE void resetSlabItem(const CacheView& c, const SlabJobs& jobs,
   uint32_t local = item - jobs.offset[j];
   int plane = job.first + static_cast<int>(local / (w * w));
   int u = static_cast<int>(local % w), v = static_cast<int>((local / w) % w);
-  Vec3i g = job.axis == 0 ? Vec3i{plane, u, v} : job.axis == 1 ? Vec3i{u, plane, v} : Vec3i{u, v, plane};
+  Vec3i g = job.axis == 0   ? Vec3i{plane, u, v}
+            : job.axis == 1 ? Vec3i{u, plane, v}
+                            : Vec3i{u, v, plane};
   // Only the toroidal index matters: u and v run over every residue of the other two axes.
   resetEntry(c, c.clipmap.entryIndex(job.level, g));
 }

@@ -26,8 +26,8 @@ struct CacheView {
   uint32_t* timestamps;  // per slot: last frame it was sampled (0: never)
   BrickKey* inverse;     // per slot: the brick it holds, level NO_LEVEL if none
   const uint32_t* freeSlots;
-  uint32_t freeCount;     // valid entries of freeSlots
-  BrickKey* requests;     // production queue
+  uint32_t freeCount;  // valid entries of freeSlots
+  BrickKey* requests;  // production queue
   uint32_t requestCapacity;
   uint32_t* counters;  // CacheCounter
   uint32_t frame;      // current frame stamp (>= 1)

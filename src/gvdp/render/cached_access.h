@@ -48,7 +48,8 @@ struct CachedAccess {
       if (cache.degraded && isSlot(ea)) return resident(ea, up, a);
     }
     if (cache.degraded) return {BrickState::Empty, 0u, level, brick};  // nothing to show
-    if (e == ENTRY_MISSING && atomicCas32(entry, ENTRY_MISSING, ENTRY_IN_PRODUCTION) == ENTRY_MISSING)
+    if (e == ENTRY_MISSING &&
+        atomicCas32(entry, ENTRY_MISSING, ENTRY_IN_PRODUCTION) == ENTRY_MISSING)
       requestBrick(cache, level, g);
     return {BrickState::Stop, 0u, level, brick};
   }

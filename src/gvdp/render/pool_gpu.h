@@ -16,7 +16,8 @@ struct GpuPool {
 
   GVDP_HD Vec3i slotTexelOrigin(uint32_t slot) const {
     int sx = static_cast<int>(slot % static_cast<uint32_t>(slotsX));
-    int sy = static_cast<int>((slot / static_cast<uint32_t>(slotsX)) % static_cast<uint32_t>(slotsY));
+    int sy =
+        static_cast<int>((slot / static_cast<uint32_t>(slotsX)) % static_cast<uint32_t>(slotsY));
     int sz = static_cast<int>(slot / static_cast<uint32_t>(slotsX * slotsY));
     return {sx * BRICK_SAMPLES, sy * BRICK_SAMPLES, sz * BRICK_SAMPLES};
   }

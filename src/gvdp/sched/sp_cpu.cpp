@@ -35,22 +35,28 @@ class SpCpu final : public Scheduler {
           next_[atomicAdd32(&nextCount, 1u)] = static_cast<uint32_t>(pixel);
       };
       if (pass == 0) {
-        parallelFor(tileCount(f) * TILE * TILE, [&](int64_t i) {
-          int pixel = tiledPixel(f, static_cast<int>(i));
-          if (pixel >= 0) renderItem(pixel);
-        }, TILE * TILE);
+        parallelFor(
+            tileCount(f) * TILE * TILE,
+            [&](int64_t i) {
+              int pixel = tiledPixel(f, static_cast<int>(i));
+              if (pixel >= 0) renderItem(pixel);
+            },
+            TILE * TILE);
       } else {
-        parallelFor(liveCount, [&](int64_t i) { renderItem(static_cast<int>(live_[i])); }, 32);
+        parallelFor(
+            liveCount, [&](int64_t i) { renderItem(static_cast<int>(live_[i])); }, 32);
       }
       ++stats.passes;
       std::swap(live_, next_);
       liveCount = nextCount;
       if (liveCount == 0) break;
 
-      uint32_t requests = std::min<uint32_t>(cache_.counters()[COUNTER_REQUESTS], cache.requestCapacity);
+      uint32_t requests =
+          std::min<uint32_t>(cache_.counters()[COUNTER_REQUESTS], cache.requestCapacity);
       uint32_t failedBefore = cache_.counters()[COUNTER_FAILED];
       const BrickKey* keys = cache_.requests();
-      parallelFor(requests, [&](int64_t i) { cache_.produce(f.scene, cache, keys[i]); }, 1);
+      parallelFor(
+          requests, [&](int64_t i) { cache_.produce(f.scene, cache, keys[i]); }, 1);
       cache_.clearRequests();
       if (cache_.counters()[COUNTER_FAILED] != failedBefore && cache_.refill() == 0)
         cache_.setDegraded(true);
@@ -59,15 +65,19 @@ class SpCpu final : public Scheduler {
 
     out = Image(f.width, f.height);
     uint32_t unfinished = 0;
-    parallelFor(static_cast<int64_t>(n), [&](int64_t i) {
-      bool u = false;
-      out.pixels[i] = resolveRay(f, payload_.data(), static_cast<int>(i), &u);
-      if (u) atomicAdd32(&unfinished, 1u);
-    }, 256);
+    parallelFor(
+        static_cast<int64_t>(n),
+        [&](int64_t i) {
+          bool u = false;
+          out.pixels[i] = resolveRay(f, payload_.data(), static_cast<int>(i), &u);
+          if (u) atomicAdd32(&unfinished, 1u);
+        },
+        256);
     stats.unfinishedPixels = unfinished;
     stats.degraded = cache_.degraded();
     stats.cache = cache_.frameStats();
-    stats.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stats.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return stats;
   }
 
@@ -86,6 +96,8 @@ class SpCpu final : public Scheduler {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& o) { return std::make_unique<SpCpu>(o); }
+std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& o) {
+  return std::make_unique<SpCpu>(o);
+}
 
 }  // namespace gvdp

@@ -1,7 +1,7 @@
+#include "gvdp/sched/sp_cuda.h"
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/cache/brick_cache_cuda.h"
 #include "gvdp/sched/sp.h"
-#include "gvdp/sched/sp_cuda.h"
 
 namespace gvdp {
 namespace {

@@ -101,7 +101,10 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
                          static_cast<int>(static_cast<long long>(cellZ)), seed);
   Vec3f q{static_cast<float>(p.x - cellX * TREE_CELL), static_cast<float>(p.y),
           static_cast<float>(p.z - cellZ * TREE_CELL)};
-  float toBorder = fminf(fminf(q.x, TREE_CELL - q.x), fminf(q.z, TREE_CELL - q.z));
+  // Other cells' trees stay 1 unit inside their cells and within a band of heights.
+  const float TREE_BOTTOM = -3.0f, TREE_TOP = 8.0f + 1.3f * 5.0f;
+  float toBorder = fminf(fminf(q.x, TREE_CELL - q.x), fminf(q.z, TREE_CELL - q.z)) + 1.0f;
+  float others = fmaxf(toBorder, fmaxf(q.y - TREE_TOP, TREE_BOTTOM - q.y));
 
   Vec3f groundNormal;
   float gy = groundHeight(p, seed, &groundNormal);
@@ -120,7 +123,7 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
              Vec3f{1.0f / tree.crownRadii.x, 1.0f / tree.crownRadii.y, 1.0f / tree.crownRadii.z};
     crown = (length(crownQ) - 1.0f) * minComponent(tree.crownRadii);
   }
-  float nearest = fminf(fminf(groundLB, trunk), fminf(crown, toBorder));
+  float nearest = fminf(fminf(groundLB, trunk), fminf(crown, others));
   bool empty = nearest >= EMPTY_MARGIN_VOXELS * voxelSize;
 
   // Solid part: ground or trunk.

@@ -35,15 +35,26 @@ GVDP_HD GVDP_INLINE float sphereAlpha(float distance, float radius, float voxelS
   return clamp01(1.0f - distance / voxelSize) * area * area;
 }
 
-GVDP_HD GVDP_INLINE VoxelSample produceSphere(const SphereCell& c, Vec3f centre, float radius,
-                                              Vec3f albedo, bool exists, float voxelSize) {
-  Vec3f l = c.local;
-  float toBorder = fminf(fminf(fminf(l.x, SPHERE_CELL - l.x), fminf(l.y, SPHERE_CELL - l.y)),
-                         fminf(l.z, SPHERE_CELL - l.z));
-  float distance = exists ? length(l - centre) - radius : 1e30f;
-  bool empty = fminf(distance, toBorder) >= EMPTY_MARGIN_VOXELS * voxelSize;
-  if (!exists) return {0u, empty};
-  return makeVoxel(albedo, normalize(l - centre), sphereAlpha(distance, radius, voxelSize), empty);
+GVDP_HD GVDP_INLINE float distanceToCellBorder(Vec3f l) {
+  return fminf(fminf(fminf(l.x, SPHERE_CELL - l.x), fminf(l.y, SPHERE_CELL - l.y)),
+               fminf(l.z, SPHERE_CELL - l.z));
+}
+
+struct Sphere {
+  bool exists;
+  Vec3f centre;  // relative to its cell's corner
+  float radius;
+  Vec3f albedo;
+};
+
+// `others`: a lower bound of the distance to the spheres of other cells.
+GVDP_HD GVDP_INLINE VoxelSample produceSphere(const SphereCell& c, const Sphere& s, float others,
+                                              float voxelSize) {
+  float distance = s.exists ? length(c.local - s.centre) - s.radius : 1e30f;
+  bool empty = fminf(distance, others) >= EMPTY_MARGIN_VOXELS * voxelSize;
+  if (!s.exists) return {0u, empty};
+  return makeVoxel(s.albedo, normalize(c.local - s.centre),
+                   sphereAlpha(distance, s.radius, voxelSize), empty);
 }
 
 GVDP_HD GVDP_INLINE Vec3f paletteColour(float t) {
@@ -52,24 +63,46 @@ GVDP_HD GVDP_INLINE Vec3f paletteColour(float t) {
           0.5f + 0.4f * cosf(2.0f * PI * (t + 0.67f))};
 }
 
+GVDP_HD GVDP_INLINE Sphere randomSphereOf(Vec3i cell, uint32_t seed) {
+  int x = cell.x, y = cell.y, z = cell.z;
+  Sphere s;
+  s.exists = hash3Unit(x, y, z, seed) < 0.3f;
+  s.radius = 0.6f + 1.6f * hash3Unit(x, y, z, seed + 1);
+  float room = SPHERE_CELL - 2.0f * (s.radius + 0.05f);
+  s.centre = {s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 2),
+              s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 3),
+              s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 4)};
+  s.albedo = paletteColour(hash3Unit(x, y, z, seed + 5));
+  return s;
+}
+
 GVDP_HD GVDP_INLINE VoxelSample produceRandomSpheres(Vec3d p, float voxelSize, uint32_t seed) {
   SphereCell c = sphereCellOf(p);
-  int x = c.cell.x, y = c.cell.y, z = c.cell.z;
-  bool exists = hash3Unit(x, y, z, seed) < 0.3f;
-  float radius = 0.6f + 1.6f * hash3Unit(x, y, z, seed + 1);
-  float room = SPHERE_CELL - 2.0f * (radius + 0.05f);
-  Vec3f centre{radius + 0.05f + room * hash3Unit(x, y, z, seed + 2),
-               radius + 0.05f + room * hash3Unit(x, y, z, seed + 3),
-               radius + 0.05f + room * hash3Unit(x, y, z, seed + 4)};
-  return produceSphere(c, centre, radius, paletteColour(hash3Unit(x, y, z, seed + 5)), exists,
-                       voxelSize);
+  float reach = EMPTY_MARGIN_VOXELS * voxelSize;
+  float others = distanceToCellBorder(c.local);
+  // Near a border, the neighbours' actual spheres bound the distance (when the margin fits in
+  // one cell; coarser voxels keep the border bound, and such bricks are never empty anyway).
+  if (others < reach && reach <= SPHERE_CELL) {
+    others = 1e30f;
+    for (int n = 0; n < 27; ++n) {
+      Vec3i d{n % 3 - 1, (n / 3) % 3 - 1, n / 9 - 1};
+      if (d.x == 0 && d.y == 0 && d.z == 0) continue;
+      Sphere s = randomSphereOf(c.cell + d, seed);
+      if (!s.exists) continue;
+      Vec3f centre = s.centre + Vec3f{d.x * SPHERE_CELL, d.y * SPHERE_CELL, d.z * SPHERE_CELL};
+      others = fminf(others, length(c.local - centre) - s.radius);
+    }
+  }
+  return produceSphere(c, randomSphereOf(c.cell, seed), others, voxelSize);
 }
 
 GVDP_HD GVDP_INLINE VoxelSample produceAlignedSpheres(Vec3d p, float voxelSize, uint32_t) {
   SphereCell c = sphereCellOf(p);
-  float half = 0.5f * SPHERE_CELL;
+  const float RADIUS = 2.0f, HALF = 0.5f * SPHERE_CELL;
   float t = 0.13f * static_cast<float>((c.cell.x * 3 + c.cell.y * 5 + c.cell.z * 7) & 7);
-  return produceSphere(c, {half, half, half}, 2.0f, paletteColour(t), true, voxelSize);
+  Sphere s{true, {HALF, HALF, HALF}, RADIUS, paletteColour(t)};
+  // Every neighbour's sphere is HALF - RADIUS inside its cell.
+  return produceSphere(c, s, distanceToCellBorder(c.local) + (HALF - RADIUS), voxelSize);
 }
 
 }  // namespace gvdp
