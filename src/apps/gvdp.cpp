@@ -31,7 +31,7 @@ struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
   std::string origin = "0,0,0", out = "out";
   int frames = UNSET, width = UNSET, height = UNSET, levels = DEFAULT_LEVELS;
-  int64_t poolBricks = UNSET, poolMb = UNSET;
+  int64_t poolBricks = UNSET, poolMb = UNSET, pendingLaunches = UNSET;
   float fov = DEFAULT_FOV_DEGREES;
 };
 
@@ -42,7 +42,11 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f) {
   cmd->add_option("--width", f.width, "image width (default: 1500 on the GPU, 160 on the CPU)");
   cmd->add_option("--height", f.height, "image height (default: 1000 on the GPU, 100 on the CPU)");
   cmd->add_option("--backend", f.backend, "cpu, cuda or auto (the GPU when there is one)");
-  cmd->add_option("--scheduler", f.scheduler, "sp (GigaVoxels loop, default) or direct (no cache)");
+  cmd->add_option("--scheduler", f.scheduler,
+                  "sp (GigaVoxels loop, default), dp (the paper: dynamic parallelism) or direct "
+                  "(no cache, the reference)");
+  cmd->add_option("--pending-launches", f.pendingLaunches,
+                  "dp: CDP pending-launch buffer (task-queue capacity on the CPU), default 65536");
   cmd->add_option("--pool-bricks", f.poolBricks,
                   "brick pool slots (default: 500000 = 2 GB on the GPU, 32768 on the CPU)");
   cmd->add_option("--pool-mb", f.poolMb, "brick pool size in MiB (instead of --pool-bricks)");
@@ -69,6 +73,11 @@ SequenceOptions toOptions(const RenderFlags& f) {
     GVDP_INPUT_CHECK(f.poolBricks >= 1 && f.poolBricks <= 50000000, "bad --pool-bricks ",
                      f.poolBricks, " (expected 1..50000000)");
     o.scheduler.poolBricks = static_cast<uint32_t>(f.poolBricks);
+  }
+  if (f.pendingLaunches != UNSET) {
+    GVDP_INPUT_CHECK(f.pendingLaunches >= 1 && f.pendingLaunches <= (1 << 24),
+                     "bad --pending-launches ", f.pendingLaunches, " (expected 1..16777216)");
+    o.scheduler.pendingLaunches = static_cast<uint32_t>(f.pendingLaunches);
   }
   if (f.poolMb != UNSET) {
     int64_t bricks = f.poolMb * (1 << 20) / (BRICK_SAMPLE_COUNT * 4);
@@ -107,6 +116,11 @@ int runRender(const RenderFlags& flags) {
                 s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
                 static_cast<unsigned long long>(s.cache.produced),
                 static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "");
+    if (s.launches)
+      std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
+                  static_cast<unsigned long long>(s.launches),
+                  static_cast<unsigned long long>(s.launchFailures),
+                  static_cast<unsigned long long>(s.deferred), static_cast<long long>(s.sweptPixels));
     std::fflush(stdout);
   });
   writeStatsJson(dir + "/stats.json", o, frames, memory);

@@ -75,4 +75,13 @@ GVDP_HD GVDP_INLINE void storeRelaxed32(uint32_t* p, uint32_t v) {
 #endif
 }
 
+// Orders a store before a later load (the Dekker pattern of dp's race-free relaunch).
+GVDP_HD GVDP_INLINE void fenceSeqCst() {
+#if GVDP_IS_GPU_CODE
+  __threadfence();
+#else
+  std::atomic_thread_fence(std::memory_order_seq_cst);
+#endif
+}
+
 }  // namespace gvdp

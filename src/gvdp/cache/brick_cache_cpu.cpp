@@ -15,7 +15,7 @@ BrickCacheCpu::BrickCacheCpu(uint32_t poolBricks)
       inverse_(poolBricks, BrickKey{{0, 0, 0}, NO_LEVEL}),
       texels_(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT, 0u) {
   GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
-  freeSlots_.resize(freeListCapacity(poolBricks));
+  freeSlots_.resize(poolBricks);
 }
 
 void BrickCacheCpu::beginFrame(const FrameSetup& frame) {
@@ -46,13 +46,12 @@ uint32_t BrickCacheCpu::refill() {
   std::vector<uint64_t> order(poolBricks_);
   for (uint32_t s = 0; s < poolBricks_; ++s)
     order[s] = (static_cast<uint64_t>(timestamps_[s]) << 32) | s;
-  size_t take = std::min<size_t>(freeSlots_.size(), order.size());
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(take), order.end());
-  uint32_t n = 0;
-  while (n < take && (order[n] >> 32) < frame_) {
-    freeSlots_[n] = static_cast<uint32_t>(order[n]);
-    ++n;
-  }
+  std::sort(order.begin(), order.end());
+  auto below = [&](uint64_t stamp) {
+    return static_cast<uint32_t>(std::lower_bound(order.begin(), order.end(), stamp << 32) - order.begin());
+  };
+  uint32_t n = freeListLength(poolBricks_, below(1), below(frame_));
+  for (uint32_t i = 0; i < n; ++i) freeSlots_[i] = static_cast<uint32_t>(order[i]);
   freeCount_ = n;
   counters_[COUNTER_FREE_NEXT] = 0;
   CacheView v = view();

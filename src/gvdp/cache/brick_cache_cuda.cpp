@@ -12,7 +12,6 @@ namespace gvdp {
 
 BrickCacheCuda::BrickCacheCuda(uint32_t poolBricks)
     : poolBricks_(poolBricks),
-      capacity_(freeListCapacity(poolBricks)),
       timestamps_(poolBricks),
       counters_(COUNTER_COUNT),
       inverse_(poolBricks),
@@ -20,7 +19,7 @@ BrickCacheCuda::BrickCacheCuda(uint32_t poolBricks)
       sortKeysOut_(poolBricks),
       sortValuesIn_(poolBricks),
       sortValuesOut_(poolBricks),
-      freeCount_(1),
+      freeCount_(2),
       sortTemp_(lruSortTempBytes(poolBricks)) {
   GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
   // Atlas of slots, at most 16384 texels (1638 slots) per axis.
@@ -86,10 +85,12 @@ uint32_t BrickCacheCuda::refill() {
   int endBit = std::max(1, static_cast<int>(std::bit_width(frame_)));
   lruSort(sortTemp_.data(), sortTemp_.size(), sortKeysIn_.data(), sortKeysOut_.data(),
           sortValuesIn_.data(), sortValuesOut_.data(), poolBricks_, endBit);
-  GVDP_CUDA_CHECK(cudaMemset(freeCount_.data(), 0, sizeof(uint32_t)));
-  launchCountOlder(sortKeysOut_.data(), capacity_, frame_, freeCount_.data());
-  GVDP_CUDA_CHECK(
-      cudaMemcpy(&freeCountHost_, freeCount_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost));
+  GVDP_CUDA_CHECK(cudaMemset(freeCount_.data(), 0, freeCount_.bytes()));
+  launchCountOlder(sortKeysOut_.data(), poolBricks_, 1u, freeCount_.data());
+  launchCountOlder(sortKeysOut_.data(), poolBricks_, frame_, freeCount_.data() + 1);
+  uint32_t counts[2];
+  GVDP_CUDA_CHECK(cudaMemcpy(counts, freeCount_.data(), sizeof counts, cudaMemcpyDeviceToHost));
+  freeCountHost_ = freeListLength(poolBricks_, counts[0], counts[1]);
   GVDP_CUDA_CHECK(cudaMemset(counters_.data() + COUNTER_FREE_NEXT, 0, sizeof(uint32_t)));
   // The free slot list is the head of the sorted slots (oldest first).
   launchUnmapSlots(view(), sortValuesOut_.data(), freeCountHost_);

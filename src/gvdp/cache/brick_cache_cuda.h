@@ -31,7 +31,7 @@ class BrickCacheCuda {
   MemoryReport memory() const;
 
  private:
-  uint32_t poolBricks_, capacity_;
+  uint32_t poolBricks_;
   ClipmapTracker tracker_;
   Clipmap clipmap_{};
   DeviceBuffer<uint32_t> entries_, timestamps_, counters_;

@@ -2,6 +2,7 @@
 // free-list capacity, per-frame statistics and the memory report.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,11 +24,19 @@ struct MemoryItem {
 };
 using MemoryReport = std::vector<MemoryItem>;
 
-// Paper 3.3.4: a list of 10% of the pool; small pools may free every slot.
+// Paper 3.3.4: a list of 10% of the pool (small pools may free every slot) ...
 inline uint32_t freeListCapacity(uint32_t poolBricks) {
   uint32_t tenth = poolBricks / 10;
   uint32_t floor = poolBricks < 256u ? poolBricks : 256u;
   return tenth > floor ? tenth : floor;
+}
+
+// ... but never fewer than the slots that hold nothing (a cold pool is free as a whole). The
+// list is the head of the slots sorted by timestamp: `unused` slots with timestamp 0 first, then
+// `older` - `unused` slots not used in this frame.
+inline uint32_t freeListLength(uint32_t poolBricks, uint32_t unused, uint32_t older) {
+  uint32_t want = std::max(freeListCapacity(poolBricks), unused);
+  return std::min(want, older);
 }
 
 // The clipmap of consecutive frames: the slabs to reset, or a full reset when the geometry

@@ -35,6 +35,10 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"evictions", f.cache.evicted},
                     {"pool_occupancy", f.cache.resident},
                     {"unfinished_pixels", f.unfinishedPixels},
+                    {"launches", f.launches},
+                    {"launch_failures", f.launchFailures},
+                    {"deferred_productions", f.deferred},
+                    {"swept_pixels", f.sweptPixels},
                     {"degraded", f.degraded}});
   j["frames"] = list;
   return j.dump(1);

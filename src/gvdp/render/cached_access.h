@@ -11,13 +11,23 @@
 
 namespace gvdp {
 
+// sp's answer to a won CAS: queue the brick for the next production pass.
+struct QueueRequest {
+  GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t*) const {
+    requestBrick(cache, level, g);
+  }
+};
+
 // Pool provides: Vec4f sample(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
 // coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates.
-template <class Pool>
+// OnMiss(cache, level, globalBrick, entry) runs in the thread that won MISSING -> IN_PRODUCTION.
+template <class Pool, class OnMiss = QueueRequest>
 struct CachedAccess {
   const CacheView& cache;
   const Pool& pool;
   const Lod& lod;
+  OnMiss onMiss{};
+  uint32_t* stopEntry = nullptr;  // the entry the ray stopped on (dp re-reads it)
 
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
     Vec3i g = cache.clipmap.globalBrick(level, localBrick);
@@ -30,7 +40,11 @@ struct CachedAccess {
     return {BrickState::Resident, slot, level, brick};
   }
 
-  GVDP_HD BrickLookup lookup(int level, Vec3i brick) const {
+  GVDP_HD bool degraded() const {
+    return cache.degraded || (cache.degradeOnFailure && loadRelaxed32(&cache.counters[COUNTER_FAILED]));
+  }
+
+  GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
     Vec3i g = cache.clipmap.globalBrick(level, brick);
     // The clipmap width covers every sample of a level (lod_test checks the formula); a brick
     // outside its window could only alias another one, so it is never read.
@@ -45,12 +59,13 @@ struct CachedAccess {
       a = {floorDiv(a.x, 2), floorDiv(a.y, 2), floorDiv(a.z, 2)};
       uint32_t ea = entryAt(up, a);
       if (ea == ENTRY_EMPTY) return {BrickState::Empty, 0u, up, a};
-      if (cache.degraded && isSlot(ea)) return resident(ea, up, a);
+      if (isSlot(ea) && degraded()) return resident(ea, up, a);
     }
-    if (cache.degraded) return {BrickState::Empty, 0u, level, brick};  // nothing to show
+    if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
     if (e == ENTRY_MISSING &&
         atomicCas32(entry, ENTRY_MISSING, ENTRY_IN_PRODUCTION) == ENTRY_MISSING)
-      requestBrick(cache, level, g);
+      onMiss(cache, level, g, entry);
+    stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};
   }
 

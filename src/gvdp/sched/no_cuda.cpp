@@ -2,6 +2,7 @@
 // refuses the cuda backend before reaching them.
 #include "gvdp/base/error.h"
 #include "gvdp/sched/direct.h"
+#include "gvdp/sched/dp.h"
 #include "gvdp/sched/sp.h"
 
 namespace gvdp {
@@ -11,6 +12,10 @@ std::unique_ptr<Scheduler> makeDirectCuda() {
 }
 
 std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions&) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions&) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

@@ -26,6 +26,31 @@ GVDP_HD GVDP_INLINE int tiledPixel(const FrameSetup& f, int i) {
   return x < f.width && y < f.height ? y * f.width + x : -1;
 }
 
+// Ray payloads are written and read by different blocks (dp, pt): on the GPU they bypass the
+// incoherent L1 (volatile accesses go to L2).
+GVDP_HD GVDP_INLINE RayState loadRayState(const RayState* p) {
+#if GVDP_IS_GPU_CODE
+  const volatile RayState* v = p;
+  return {{v->colour.x, v->colour.y, v->colour.z, v->colour.w}, v->level, v->step};
+#else
+  return *p;
+#endif
+}
+
+GVDP_HD GVDP_INLINE void storeRayState(RayState* p, const RayState& s) {
+#if GVDP_IS_GPU_CODE
+  volatile RayState* v = p;
+  v->colour.x = s.colour.x;
+  v->colour.y = s.colour.y;
+  v->colour.z = s.colour.z;
+  v->colour.w = s.colour.w;
+  v->level = s.level;
+  v->step = s.step;
+#else
+  *p = s;
+#endif
+}
+
 // Algorithm 1 for one ray from its saved state; true when it stopped on a missing brick (its
 // state is saved and it must be relaunched after production).
 template <class Pool>

@@ -3,6 +3,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
 #include "gvdp/sched/direct.h"
+#include "gvdp/sched/dp.h"
 #include "gvdp/sched/sp.h"
 
 namespace gvdp {
@@ -17,23 +18,33 @@ Backend parseBackend(std::string_view name) {
   throw InputError("unknown backend '" + std::string(name) + "' (backends: cpu, cuda)");
 }
 
-std::string_view schedulerName(SchedulerKind k) {
-  return k == SchedulerKind::Direct ? "direct" : "sp";
+namespace {
+constexpr std::string_view SCHEDULER_NAMES[] = {"direct", "sp", "dp"};
 }
 
+std::string_view schedulerName(SchedulerKind k) { return SCHEDULER_NAMES[static_cast<int>(k)]; }
+
 SchedulerKind parseScheduler(std::string_view name) {
-  if (name == "direct") return SchedulerKind::Direct;
-  if (name == "sp") return SchedulerKind::Sp;
-  throw InputError("unknown scheduler '" + std::string(name) + "' (schedulers: sp, direct)");
+  for (int k = 0; k < 3; ++k)
+    if (SCHEDULER_NAMES[k] == name) return static_cast<SchedulerKind>(k);
+  throw InputError("unknown scheduler '" + std::string(name) + "' (schedulers: sp, dp, direct)");
 }
 
 std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options) {
   if (options.backend == Backend::Cuda) {
     GVDP_INPUT_CHECK(cudaBuilt(), "backend 'cuda' unavailable: this gvdp was built without CUDA");
     GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
-    return options.kind == SchedulerKind::Direct ? makeDirectCuda() : makeSpCuda(options);
+    switch (options.kind) {
+      case SchedulerKind::Direct: return makeDirectCuda();
+      case SchedulerKind::Sp: return makeSpCuda(options);
+      default: return makeDpCuda(options);
+    }
   }
-  return options.kind == SchedulerKind::Direct ? makeDirectCpu() : makeSpCpu(options);
+  switch (options.kind) {
+    case SchedulerKind::Direct: return makeDirectCpu();
+    case SchedulerKind::Sp: return makeSpCpu(options);
+    default: return makeDpCpu(options);
+  }
 }
 
 }  // namespace gvdp

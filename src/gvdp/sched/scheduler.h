@@ -15,7 +15,7 @@
 namespace gvdp {
 
 enum class Backend { Cpu, Cuda };
-enum class SchedulerKind { Direct, Sp };
+enum class SchedulerKind { Direct, Sp, Dp };
 
 std::string_view backendName(Backend b);
 Backend parseBackend(std::string_view name);  // "cpu" | "cuda"; throws InputError
@@ -28,18 +28,24 @@ struct FrameStats {
   int64_t unfinishedPixels = 0;
   int passes = 0;         // render passes (sp iterations)
   bool degraded = false;  // some bricks could not be produced: coarser levels stood in
+  uint64_t launches = 0;        // dp: device-side launches (productions + render relaunches)
+  uint64_t launchFailures = 0;  // dp: launches refused (pending-launch buffer full)
+  uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)
+  int64_t sweptPixels = 0;      // dp: rays the device-side schedule left to the sp sweep
   CacheStats cache;
 };
 
 struct SchedulerOptions {
   Backend backend = Backend::Cpu;
   SchedulerKind kind = SchedulerKind::Sp;
-  uint32_t poolBricks = 0;  // 0: the backend's default
+  uint32_t poolBricks = 0;       // 0: the backend's default
+  uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
 };
 
 // Default pool sizes: about 2 GB on the GPU (the paper), 128 MB on the CPU.
 constexpr uint32_t DEFAULT_POOL_BRICKS_CUDA = 500000;
 constexpr uint32_t DEFAULT_POOL_BRICKS_CPU = 32768;
+constexpr uint32_t DEFAULT_PENDING_LAUNCHES = 1u << 16;
 
 class Scheduler {
  public:

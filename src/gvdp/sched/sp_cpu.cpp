@@ -2,12 +2,72 @@
 #include <vector>
 
 #include "gvdp/base/parallel.h"
-#include "gvdp/cache/brick_cache_cpu.h"
 #include "gvdp/render/pool_cpu.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp.h"
+#include "gvdp/sched/sp_loop_cpu.h"
 
 namespace gvdp {
+
+namespace {
+void produceQueued(const FrameSetup& f, BrickCacheCpu& cache) {
+  CacheView view = cache.view();
+  uint32_t requests = std::min(cache.counters()[COUNTER_REQUESTS], view.requestCapacity);
+  uint32_t failedBefore = cache.counters()[COUNTER_FAILED];
+  const BrickKey* keys = cache.requests();
+  parallelFor(requests, [&](int64_t i) { cache.produce(f.scene, view, keys[i]); }, 1);
+  cache.clearRequests();
+  if (cache.counters()[COUNTER_FAILED] != failedBefore && cache.refill() == 0)
+    cache.setDegraded(true);
+}
+}  // namespace
+
+void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
+                  std::vector<uint32_t>& live, std::vector<uint32_t>& next, uint32_t liveCount,
+                  bool tiled, FrameStats& stats) {
+  CpuPool pool{cache.texels()};
+  produceQueued(f, cache);
+  for (int pass = 0;; ++pass) {
+    CacheView view = cache.view();
+    uint32_t nextCount = 0;
+    auto renderItem = [&](int pixel) {
+      if (renderRay(f, view, pool, payload, pixel))
+        next[atomicAdd32(&nextCount, 1u)] = static_cast<uint32_t>(pixel);
+    };
+    if (pass == 0 && tiled) {
+      parallelFor(
+          tileCount(f) * TILE * TILE,
+          [&](int64_t i) {
+            int pixel = tiledPixel(f, static_cast<int>(i));
+            if (pixel >= 0) renderItem(pixel);
+          },
+          TILE * TILE);
+    } else {
+      parallelFor(liveCount, [&](int64_t i) { renderItem(static_cast<int>(live[i])); }, 32);
+    }
+    ++stats.passes;
+    std::swap(live, next);
+    liveCount = nextCount;
+    if (liveCount == 0) return;
+    produceQueued(f, cache);
+    if (stats.passes >= SP_MAX_PASSES) cache.setDegraded(true);
+  }
+}
+
+int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out) {
+  out = Image(f.width, f.height);
+  uint32_t unfinished = 0;
+  parallelFor(
+      f.pixelCount(),
+      [&](int64_t i) {
+        bool u = false;
+        out.pixels[i] = resolveRay(f, payload, static_cast<int>(i), &u);
+        if (u) atomicAdd32(&unfinished, 1u);
+      },
+      256);
+  return unfinished;
+}
+
 namespace {
 
 class SpCpu final : public Scheduler {
@@ -24,56 +84,8 @@ class SpCpu final : public Scheduler {
     payload_.assign(n, initialRayState());
     live_.resize(n);
     next_.resize(n);
-    CpuPool pool{cache_.texels()};
-
-    uint32_t liveCount = 0;
-    for (int pass = 0;; ++pass) {
-      CacheView cache = cache_.view();
-      uint32_t nextCount = 0;
-      auto renderItem = [&](int pixel) {
-        if (renderRay(f, cache, pool, payload_.data(), pixel))
-          next_[atomicAdd32(&nextCount, 1u)] = static_cast<uint32_t>(pixel);
-      };
-      if (pass == 0) {
-        parallelFor(
-            tileCount(f) * TILE * TILE,
-            [&](int64_t i) {
-              int pixel = tiledPixel(f, static_cast<int>(i));
-              if (pixel >= 0) renderItem(pixel);
-            },
-            TILE * TILE);
-      } else {
-        parallelFor(
-            liveCount, [&](int64_t i) { renderItem(static_cast<int>(live_[i])); }, 32);
-      }
-      ++stats.passes;
-      std::swap(live_, next_);
-      liveCount = nextCount;
-      if (liveCount == 0) break;
-
-      uint32_t requests =
-          std::min<uint32_t>(cache_.counters()[COUNTER_REQUESTS], cache.requestCapacity);
-      uint32_t failedBefore = cache_.counters()[COUNTER_FAILED];
-      const BrickKey* keys = cache_.requests();
-      parallelFor(
-          requests, [&](int64_t i) { cache_.produce(f.scene, cache, keys[i]); }, 1);
-      cache_.clearRequests();
-      if (cache_.counters()[COUNTER_FAILED] != failedBefore && cache_.refill() == 0)
-        cache_.setDegraded(true);
-      if (stats.passes >= SP_MAX_PASSES) cache_.setDegraded(true);
-    }
-
-    out = Image(f.width, f.height);
-    uint32_t unfinished = 0;
-    parallelFor(
-        static_cast<int64_t>(n),
-        [&](int64_t i) {
-          bool u = false;
-          out.pixels[i] = resolveRay(f, payload_.data(), static_cast<int>(i), &u);
-          if (u) atomicAdd32(&unfinished, 1u);
-        },
-        256);
-    stats.unfinishedPixels = unfinished;
+    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, 0, true, stats);
+    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     stats.degraded = cache_.degraded();
     stats.cache = cache_.frameStats();
     stats.ms =

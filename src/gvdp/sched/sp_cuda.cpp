@@ -1,78 +1,93 @@
-#include "gvdp/sched/sp_cuda.h"
-#include "gvdp/base/cuda_util.h"
-#include "gvdp/cache/brick_cache_cuda.h"
 #include "gvdp/sched/sp.h"
+#include "gvdp/sched/sp_cuda.h"
+#include "gvdp/sched/sp_loop_cuda.h"
 
 namespace gvdp {
+
+namespace {
+void produceQueued(const FrameSetup& f, BrickCacheCuda& cache) {
+  uint32_t before[COUNTER_COUNT], after[COUNTER_COUNT];
+  cache.readCounters(before);
+  uint32_t requests = std::min(before[COUNTER_REQUESTS], cache.view().requestCapacity);
+  if (requests == 0) return;
+  launchProduce(f, cache.view(), cache.pool(), requests);
+  cache.clearRequests();
+  cache.readCounters(after);
+  if (after[COUNTER_FAILED] != before[COUNTER_FAILED] && cache.refill() == 0)
+    cache.setDegraded(true);
+}
+}  // namespace
+
+void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b,
+                   uint32_t liveCount, bool tiled, FrameStats& stats) {
+  produceQueued(f, cache);
+  for (int pass = 0;; ++pass) {
+    GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
+    if (pass == 0 && tiled) {
+      launchFirstRenderPass(f, cache.view(), cache.pool(), b.payload.data(), b.next.data(),
+                            b.counters.data());
+    } else {
+      launchRenderPass(f, cache.view(), cache.pool(), b.payload.data(), b.live.data(), liveCount,
+                       b.next.data(), b.counters.data());
+    }
+    GVDP_CUDA_CHECK(cudaGetLastError());
+    ++stats.passes;
+    std::swap(b.live, b.next);
+    // The GigaVoxels loop: the host reads the counts after every pass.
+    GVDP_CUDA_CHECK(cudaMemcpy(&liveCount, b.counters.data(), 4, cudaMemcpyDeviceToHost));
+    if (liveCount == 0) return;
+    produceQueued(f, cache);
+    if (stats.passes >= SP_MAX_PASSES) cache.setDegraded(true);
+  }
+}
+
+int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b) {
+  GVDP_CUDA_CHECK(cudaMemset(b.counters.data() + 1, 0, 4));
+  launchResolve(f, b.payload.data(), b.image.data(), b.counters.data());
+  GVDP_CUDA_CHECK(cudaGetLastError());
+  uint32_t unfinished = 0;
+  GVDP_CUDA_CHECK(cudaMemcpy(&unfinished, b.counters.data() + 1, 4, cudaMemcpyDeviceToHost));
+  return unfinished;
+}
+
+void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out) {
+  out = Image(f.width, f.height);
+  GVDP_CUDA_CHECK(cudaMemcpy(out.pixels.data(), b.image.data(), b.image.bytes(),
+                             cudaMemcpyDeviceToHost));
+}
+
 namespace {
 
 class SpCuda final : public Scheduler {
  public:
   explicit SpCuda(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA), passCounters_(2) {}
+      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA) {}
 
   FrameStats render(const FrameSetup& f, Image& out) override {
     FrameStats stats;
     stats.index = f.frameIndex;
-    size_t n = static_cast<size_t>(f.pixelCount());
-    if (payload_.size() != n) {
-      payload_ = DeviceBuffer<RayState>(n);
-      live_ = DeviceBuffer<uint32_t>(n);
-      next_ = DeviceBuffer<uint32_t>(n);
-      image_ = DeviceBuffer<uint32_t>(n);
-    }
+    buffers_.resize(static_cast<size_t>(f.pixelCount()));
     timer_.start();
     cache_.beginFrame(f);
-    GVDP_CUDA_CHECK(cudaMemset(passCounters_.data(), 0, passCounters_.bytes()));
-    launchFirstRenderPass(f, cache_.view(), cache_.pool(), payload_.data(), next_.data(),
-                          passCounters_.data());
-    for (;;) {
-      GVDP_CUDA_CHECK(cudaGetLastError());
-      ++stats.passes;
-      // The GigaVoxels loop: the host reads the counts after every pass.
-      uint32_t stopped = 0, counters[COUNTER_COUNT];
-      GVDP_CUDA_CHECK(cudaMemcpy(&stopped, passCounters_.data(), 4, cudaMemcpyDeviceToHost));
-      if (stopped == 0) break;
-      cache_.readCounters(counters);
-      uint32_t requests = std::min(counters[COUNTER_REQUESTS], cache_.view().requestCapacity);
-      launchProduce(f, cache_.view(), cache_.pool(), requests);
-      cache_.clearRequests();
-      uint32_t after[COUNTER_COUNT];
-      cache_.readCounters(after);
-      if (after[COUNTER_FAILED] != counters[COUNTER_FAILED] && cache_.refill() == 0)
-        cache_.setDegraded(true);
-      if (stats.passes >= SP_MAX_PASSES) cache_.setDegraded(true);
-      std::swap(live_, next_);
-      GVDP_CUDA_CHECK(cudaMemset(passCounters_.data(), 0, 4));
-      launchRenderPass(f, cache_.view(), cache_.pool(), payload_.data(), live_.data(), stopped,
-                       next_.data(), passCounters_.data());
-    }
-    launchResolve(f, payload_.data(), image_.data(), passCounters_.data());
-    GVDP_CUDA_CHECK(cudaGetLastError());
+    runSpLoopCuda(f, cache_, buffers_, 0, true, stats);
+    stats.unfinishedPixels = resolveCuda(f, buffers_);
     timer_.stop();
     stats.ms = timer_.ms();
-    uint32_t counts[2];
-    GVDP_CUDA_CHECK(cudaMemcpy(counts, passCounters_.data(), 8, cudaMemcpyDeviceToHost));
-    stats.unfinishedPixels = counts[1];
+    downloadImage(f, buffers_, out);
     stats.degraded = cache_.degraded();
     stats.cache = cache_.frameStats();
-    out = Image(f.width, f.height);
-    GVDP_CUDA_CHECK(cudaMemcpy(out.pixels.data(), image_.data(), n * 4, cudaMemcpyDeviceToHost));
     return stats;
   }
 
   MemoryReport memory() const override {
     MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload", payload_.bytes()});
-    m.push_back({"live_ray_lists", live_.bytes() + next_.bytes()});
-    m.push_back({"image", image_.bytes()});
+    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
     return m;
   }
 
  private:
   BrickCacheCuda cache_;
-  DeviceBuffer<RayState> payload_;
-  DeviceBuffer<uint32_t> live_, next_, image_, passCounters_;
+  SpBuffersCuda buffers_;
   GpuTimer timer_;
 };
 

@@ -15,6 +15,9 @@ void launchRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool
                       uint32_t* passCounters);
 void launchProduce(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
                    uint32_t requestCount);
+// Appends the pixels whose ray is not finished to `live`; passCounters[0] counts them.
+void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
+                             uint32_t* passCounters);
 void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
                    uint32_t* passCounters);
 

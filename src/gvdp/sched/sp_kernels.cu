@@ -1,5 +1,6 @@
 // CUDA kernels of the sp scheduler: render passes (Algorithm 1 over the tiled screen, then over
 // the compacted list of stopped rays), production (Algorithm 2, one block per brick) and resolve.
+#include "gvdp/sched/produce_block.cuh"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp_cuda.h"
 
@@ -7,7 +8,6 @@ namespace gvdp {
 namespace {
 
 constexpr int RENDER_BLOCK = 128;
-constexpr int PRODUCE_BLOCK = 512;
 
 // Thread compaction (seed 004): the stopped rays of a warp are appended with one atomic, so the
 // next pass runs over full warps of live rays only. Every lane of the warp must call it.
@@ -43,33 +43,16 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
   appendStopped(stopped, pixel, next, &passCounters[0]);
 }
 
-// Algorithm 2: one block per requested brick, one thread per sample (two per thread here).
 __global__ void __launch_bounds__(PRODUCE_BLOCK)
     produceKernel(FrameSetup f, CacheView cache, GpuPool pool) {
-  __shared__ uint32_t slot;
-  BrickKey key = cache.requests[blockIdx.x];
-  Rgba8 values[2];
-  bool empty = true;
-  for (int k = 0; k < 2; ++k) {
-    int s = static_cast<int>(threadIdx.x) + k * PRODUCE_BLOCK;
-    if (s < BRICK_SAMPLE_COUNT) {
-      VoxelSample v = produceBrickSample(f.scene, key, s);
-      values[k] = v.rgba;
-      empty = empty && v.empty;
-    }
-  }
-  empty = __syncthreads_and(empty);
-  if (threadIdx.x == 0) slot = empty ? MAX_SLOTS : takeFreeSlot(cache);
-  __syncthreads();
-  if (!empty && slot != MAX_SLOTS) {
-    for (int k = 0; k < 2; ++k) {
-      int s = static_cast<int>(threadIdx.x) + k * PRODUCE_BLOCK;
-      if (s < BRICK_SAMPLE_COUNT) pool.write(slot, s, values[k]);
-    }
-    __threadfence();
-  }
-  __syncthreads();
-  if (threadIdx.x == 0) publishBrick(cache, key, empty, slot);
+  produceBrickBlock(f.scene, cache, pool, cache.requests[blockIdx.x]);
+}
+
+__global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, uint32_t* live,
+                                        uint32_t* passCounters) {
+  int pixel = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  bool unfinished = pixel < f.pixelCount() && !payload[pixel].finished(f.lod);
+  appendStopped(unfinished, static_cast<uint32_t>(pixel), live, &passCounters[0]);
 }
 
 __global__ void resolveKernel(FrameSetup f, const RayState* payload, uint32_t* image,
@@ -100,6 +83,12 @@ void launchRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool
 void launchProduce(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
                    uint32_t requestCount) {
   if (requestCount) produceKernel<<<requestCount, PRODUCE_BLOCK>>>(f, cache, pool);
+}
+
+void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
+                             uint32_t* passCounters) {
+  unsigned n = static_cast<unsigned>(f.pixelCount());
+  compactUnfinishedKernel<<<(n + 255) / 256, 256>>>(f, payload, live, passCounters);
 }
 
 void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,

@@ -1,0 +1,16 @@
+// The `dp` scheduler (the paper): render and production tasks launch each other on the device
+// (CUDA Dynamic Parallelism; a task queue on the CPU). See dp_body.h for the protocol. Rays a
+// device-side schedule could not finish (refused launch, launch depth limit) are finished by
+// the sp loop afterwards, and counted.
+#pragma once
+
+#include <memory>
+
+#include "gvdp/sched/scheduler.h"
+
+namespace gvdp {
+
+std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& options);
+std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& options);
+
+}  // namespace gvdp

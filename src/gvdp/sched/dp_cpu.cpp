@@ -1,0 +1,128 @@
+#include <atomic>
+#include <chrono>
+#include <vector>
+
+#include "gvdp/base/parallel.h"
+#include "gvdp/render/pool_cpu.h"
+#include "gvdp/sched/dp.h"
+#include "gvdp/sched/dp_body.h"
+#include "gvdp/sched/sp_loop_cpu.h"
+#include "gvdp/sched/task_queue.h"
+
+namespace gvdp {
+namespace {
+
+struct DpTask {
+  bool produce;
+  PixelRect rect;  // render task
+  BrickKey key;    // production task
+  uint32_t* entry;
+};
+
+struct CpuLauncher {
+  TaskQueue<DpTask>* queue;
+  const DpContext* ctx;
+
+  void produce(const BrickKey& key, uint32_t* entry) {
+    if (queue->push({true, {}, key, entry})) {
+      atomicAdd32(&ctx->counters[DP_PRODUCTIONS], 1u);
+    } else {  // a refused launch: the brick is MISSING again, its rays wait for the sweep
+      storeRelease32(entry, ENTRY_MISSING);
+      atomicAdd32(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
+    }
+  }
+  void relaunch(const PixelRect& r) {
+    if (queue->push({false, r, {}, nullptr}))
+      atomicAdd32(&ctx->counters[DP_RELAUNCHES], 1u);
+    else
+      atomicAdd32(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
+  }
+};
+
+class DpCpu final : public Scheduler {
+ public:
+  explicit DpCpu(const SchedulerOptions& o)
+      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CPU),
+        pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES) {}
+
+  FrameStats render(const FrameSetup& f, Image& out) override {
+    auto t0 = std::chrono::steady_clock::now();
+    FrameStats stats;
+    stats.index = f.frameIndex;
+    cache_.beginFrame(f);
+    size_t n = static_cast<size_t>(f.pixelCount());
+    payload_.assign(n, initialRayState());
+    locks_.assign(n, RAY_FREE);
+    uint32_t counters[DP_COUNTER_COUNT] = {};
+    CacheView view = cache_.view();
+    view.degradeOnFailure = 1;
+    DpContext ctx{f, view, payload_.data(), locks_.data(), counters};
+    CpuPool pool{cache_.texels()};
+
+    // Root launch: the screen in 32x16 tiles (not limited by the pending-launch capacity).
+    TaskQueue<DpTask> queue(pendingLaunches_ + static_cast<size_t>(dpTileCount(f)));
+    for (int t = 0; t < dpTileCount(f); ++t) {
+      int x = (t % ((f.width + DP_TILE_W - 1) / DP_TILE_W)) * DP_TILE_W;
+      int y = (t / ((f.width + DP_TILE_W - 1) / DP_TILE_W)) * DP_TILE_H;
+      queue.push({false, {x, y, std::min(x + DP_TILE_W, f.width), std::min(y + DP_TILE_H, f.height)}, {}, nullptr});
+    }
+    CpuLauncher launcher{&queue, &ctx};
+    ThreadPool& threads = ThreadPool::global();
+    threads.run(threads.size(), 1, [&](int64_t, int64_t, int) {
+      DpTask task;
+      while (queue.pop(task)) {
+        if (task.produce) {
+          cache_.produce(f.scene, ctx.cache, task.key);
+          launcher.relaunch(brickScreenRect(f, ctx.cache.clipmap, task.key));
+        } else {
+          for (int y = task.rect.y0; y < task.rect.y1; ++y)
+            for (int x = task.rect.x0; x < task.rect.x1; ++x)
+              dpRenderPixel(ctx, pool, launcher, y * f.width + x);
+        }
+        queue.finished();
+      }
+    });
+    sweep(f, stats);
+    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
+    stats.degraded = cache_.degraded() || counters[DP_LAUNCH_FAILURES] != 0 ||
+                     cache_.counters()[COUNTER_FAILED] != 0;
+    stats.cache = cache_.frameStats();
+    stats.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stats.launches = counters[DP_PRODUCTIONS] + counters[DP_RELAUNCHES];
+    stats.launchFailures = counters[DP_LAUNCH_FAILURES];
+    return stats;
+  }
+
+  MemoryReport memory() const override {
+    MemoryReport m = cache_.memory();
+    m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
+    m.push_back({"ray_locks", locks_.size() * sizeof(uint32_t)});
+    m.push_back({"task_queue", pendingLaunches_ * sizeof(DpTask)});
+    return m;
+  }
+
+ private:
+  // Safety net: rays the task schedule left unfinished go through the sp loop.
+  void sweep(const FrameSetup& f, FrameStats& stats) {
+    live_.clear();
+    for (uint32_t i = 0; i < static_cast<uint32_t>(f.pixelCount()); ++i)
+      if (!payload_[i].finished(f.lod)) live_.push_back(i);
+    stats.sweptPixels = static_cast<int64_t>(live_.size());
+    if (live_.empty() && cache_.counters()[COUNTER_REQUESTS] == 0) return;
+    next_.resize(f.pixelCount());
+    live_.resize(f.pixelCount());
+    // A degraded frame keeps degrading; the sweep itself may refill the free list.
+    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, static_cast<uint32_t>(stats.sweptPixels), false, stats);
+  }
+
+  BrickCacheCpu cache_;
+  size_t pendingLaunches_;
+  std::vector<RayState> payload_;
+  std::vector<uint32_t> locks_, live_, next_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o) { return std::make_unique<DpCpu>(o); }
+
+}  // namespace gvdp

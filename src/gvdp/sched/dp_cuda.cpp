@@ -1,0 +1,99 @@
+#include "gvdp/sched/dp_cuda.h"
+
+#include "gvdp/sched/dp.h"
+#include "gvdp/sched/sp_cuda.h"
+#include "gvdp/sched/sp_loop_cuda.h"
+
+namespace gvdp {
+namespace {
+
+class DpCuda final : public Scheduler {
+ public:
+  explicit DpCuda(const SchedulerOptions& o)
+      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
+        pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES),
+        locks_(0),
+        counters_(DP_COUNTER_COUNT) {
+    size_t free0 = 0, free1 = 0, total = 0;
+    GVDP_CUDA_CHECK(cudaMemGetInfo(&free0, &total));
+    GVDP_CUDA_CHECK(cudaDeviceSetLimit(cudaLimitDevRuntimePendingLaunchCount, pendingLaunches_));
+    GVDP_CUDA_CHECK(cudaMemGetInfo(&free1, &total));
+    cdpBytes_ = free0 > free1 ? free0 - free1 : 0;
+  }
+
+  FrameStats render(const FrameSetup& f, Image& out) override {
+    FrameStats stats;
+    stats.index = f.frameIndex;
+    size_t n = static_cast<size_t>(f.pixelCount());
+    buffers_.resize(n);
+    if (locks_.size() != n) locks_ = DeviceBuffer<uint32_t>(n);
+    size_t freeBefore = 0, freeAfter = 0, total = 0;
+    if (firstFrame_) GVDP_CUDA_CHECK(cudaMemGetInfo(&freeBefore, &total));
+
+    timer_.start();
+    cache_.beginFrame(f);
+    GVDP_CUDA_CHECK(cudaMemset(locks_.data(), 0, locks_.bytes()));  // RAY_FREE
+    GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));
+    GVDP_CUDA_CHECK(cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));  // fresh rays
+    CacheView view = cache_.view();
+    view.degradeOnFailure = 1;
+    DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data()};
+    launchDpFrame(ctx, cache_.pool());
+    GVDP_CUDA_CHECK(cudaGetLastError());
+    sweep(f, stats);
+    stats.unfinishedPixels = resolveCuda(f, buffers_);
+    timer_.stop();
+    stats.ms = timer_.ms();
+    if (firstFrame_) {
+      GVDP_CUDA_CHECK(cudaMemGetInfo(&freeAfter, &total));
+      cdpBytes_ += freeBefore > freeAfter ? freeBefore - freeAfter : 0;
+      firstFrame_ = false;
+    }
+    downloadImage(f, buffers_, out);
+    uint32_t c[DP_COUNTER_COUNT];
+    GVDP_CUDA_CHECK(cudaMemcpy(c, counters_.data(), sizeof c, cudaMemcpyDeviceToHost));
+    stats.launches = c[DP_PRODUCTIONS] + c[DP_RELAUNCHES];
+    stats.launchFailures = c[DP_LAUNCH_FAILURES];
+    stats.deferred = c[DP_DEFERRED];
+    stats.cache = cache_.frameStats();
+    stats.degraded = cache_.degraded() || stats.cache.failed != 0 || stats.launchFailures != 0;
+    return stats;
+  }
+
+  MemoryReport memory() const override {
+    MemoryReport m = cache_.memory();
+    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
+    m.push_back({"ray_locks", locks_.bytes()});
+    m.push_back({"cdp_pending_launch_buffer", cdpBytes_});
+    return m;
+  }
+
+ private:
+  // Rays the device-side schedule left unfinished (refused launches, deferred productions) are
+  // finished by the sp loop; with the race-free relaunch there are none otherwise.
+  void sweep(const FrameSetup& f, FrameStats& stats) {
+    GVDP_CUDA_CHECK(cudaMemset(buffers_.counters.data(), 0, 4));
+    launchCompactUnfinished(f, buffers_.payload.data(), buffers_.live.data(),
+                            buffers_.counters.data());
+    uint32_t unfinished = 0;
+    GVDP_CUDA_CHECK(cudaMemcpy(&unfinished, buffers_.counters.data(), 4, cudaMemcpyDeviceToHost));
+    stats.sweptPixels = unfinished;
+    if (unfinished) runSpLoopCuda(f, cache_, buffers_, unfinished, false, stats);
+  }
+
+  BrickCacheCuda cache_;
+  uint32_t pendingLaunches_;
+  SpBuffersCuda buffers_;
+  DeviceBuffer<uint32_t> locks_, counters_;
+  GpuTimer timer_;
+  size_t cdpBytes_ = 0;
+  bool firstFrame_ = true;
+};
+
+}  // namespace
+
+std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& o) {
+  return std::make_unique<DpCuda>(o);
+}
+
+}  // namespace gvdp

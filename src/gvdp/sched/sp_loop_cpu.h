@@ -1,0 +1,25 @@
+// The sp loop on the CPU backend, shared by `sp` (the whole frame) and by `dp` (its sweep of
+// rays a device-side schedule left unfinished): render pass over the live rays -> production of
+// the queued bricks -> the stopped rays -> repeat.
+#pragma once
+
+#include <vector>
+
+#include "gvdp/cache/brick_cache_cpu.h"
+#include "gvdp/sched/scheduler.h"
+
+namespace gvdp {
+
+struct RayState;
+
+// Runs passes until no ray is left. With `tiled`, the first pass covers every pixel in 8x8
+// tiles from a fresh state; otherwise it resumes the `liveCount` rays of `live`. Bricks already
+// queued (cache counters) are produced before the first pass. Adds to stats.passes.
+void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
+                  std::vector<uint32_t>& live, std::vector<uint32_t>& next, uint32_t liveCount,
+                  bool tiled, FrameStats& stats);
+
+// Resolves every pixel to `out`; returns the unfinished ones.
+int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out);
+
+}  // namespace gvdp

@@ -1,0 +1,37 @@
+// The sp loop on the CUDA backend, shared by `sp` (the whole frame) and `dp` (the sweep of rays
+// its device-side schedule left unfinished). See sp_loop_cpu.h.
+#pragma once
+
+#include "gvdp/base/cuda_util.h"
+#include "gvdp/cache/brick_cache_cuda.h"
+#include "gvdp/render/march.h"
+#include "gvdp/sched/scheduler.h"
+
+namespace gvdp {
+
+// Device buffers of the loop: ray payloads, two live-ray lists, the pass counters
+// ([0] rays stopped in a pass, [1] unfinished at resolve) and the image.
+struct SpBuffersCuda {
+  DeviceBuffer<RayState> payload;
+  DeviceBuffer<uint32_t> live, next, counters{2}, image;
+
+  void resize(size_t pixels) {
+    if (payload.size() == pixels) return;
+    payload = DeviceBuffer<RayState>(pixels);
+    live = DeviceBuffer<uint32_t>(pixels);
+    next = DeviceBuffer<uint32_t>(pixels);
+    image = DeviceBuffer<uint32_t>(pixels);
+  }
+  size_t bytes() const { return payload.bytes() + live.bytes() + next.bytes() + image.bytes(); }
+};
+
+// With `tiled`, the first pass starts every pixel afresh in 8x8 tiles; otherwise it resumes the
+// `liveCount` rays listed in b.live. Queued bricks are produced first. Adds to stats.passes.
+void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b,
+                   uint32_t liveCount, bool tiled, FrameStats& stats);
+
+// Resolves to b.image; returns the unfinished pixels.
+int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b);
+void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out);
+
+}  // namespace gvdp
