@@ -22,6 +22,10 @@ for sched in "${schedulers[@]}"; do
     --scheduler "$sched" --scene forest --width 320 --height 200 --frames 3 --pool-bricks 20000 \
     --out /tmp/memcheck >>"$out/sanitizer.log" 2>&1 || status=1
   echo "memcheck $sched: $(grep -E "ERROR SUMMARY" "$out/sanitizer.log" | tail -n 1)"
+  compute-sanitizer --tool racecheck --error-exitcode 9 ./carry/gvdp render --backend cuda \
+    --scheduler "$sched" --scene perlin --width 160 --height 100 --frames 2 --pool-bricks 20000 \
+    --out /tmp/racecheck >>"$out/sanitizer.log" 2>&1 || status=1
+  echo "racecheck $sched: $(grep -E "ERROR SUMMARY|RACECHECK SUMMARY" "$out/sanitizer.log" | tail -n 1)"
 done
 for sched in "${schedulers[@]}"; do
   pngs=()
