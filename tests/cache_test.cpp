@@ -52,10 +52,13 @@ void touchRandomBricks(BrickCacheCpu& c, const FrameSetup& f, std::mt19937& rng,
     float reach = f.lod.levelEnd(level) * 0.9f;
     Vec3f p = f.eye + Vec3f{u(rng), u(rng), u(rng)} * reach;
     access.lookup(level, floorToInt(p / f.lod.voxelSize(level) * (1.0f / BRICK_WIDTH)));
+    // The queue holds one request per ray of a pass: produce in batches below that.
+    if (c.counters()[COUNTER_REQUESTS] + 1 >= v.requestCapacity || i + 1 == n) {
+      uint32_t requests = c.counters()[COUNTER_REQUESTS];
+      for (uint32_t r = 0; r < requests; ++r) c.produce(f.scene, v, c.requests()[r]);
+      c.clearRequests();
+    }
   }
-  uint32_t requests = c.counters()[COUNTER_REQUESTS];
-  for (uint32_t i = 0; i < requests; ++i) c.produce(f.scene, v, c.requests()[i]);
-  c.clearRequests();
 }
 
 }  // namespace
@@ -85,7 +88,7 @@ TEST(Cache, SlabsLeavingTheWindowAreResetAndTheirSlotsFreed) {
   std::mt19937 rng(5);
   FrameSetup f0 = frameAt({10.5, 8.0, 0.5}, 0);
   cache.beginFrame(f0);
-  touchRandomBricks(cache, f0, rng, 600);
+  touchRandomBricks(cache, f0, rng, 4000);
   std::vector<BrickKey> level0;
   for (uint32_t s = 0; s < cache.poolBricks(); ++s)
     if (cache.inverse()[s].level == 0) level0.push_back(cache.inverse()[s]);

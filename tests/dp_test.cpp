@@ -27,7 +27,9 @@ Renders renderRun(const std::string& scene, SchedulerOptions s, int frames, int 
   return r;
 }
 
-std::string sceneName(int i) { return std::string(allScenes()[i].name); }
+std::string sceneName(int i) {
+  return std::string(allScenes()[i].name);
+}
 }  // namespace
 
 class DpCpuTest : public ::testing::TestWithParam<int> {};
@@ -107,10 +109,11 @@ TEST_P(GpuDpTest, MatchesGpuSpBitForBitOnA20FrameWalkthrough) {
     unfinished += dp.stats[f].unfinishedPixels;
     swept += dp.stats[f].sweptPixels;
   }
-  std::printf("[ measure ] %s dp vs sp cuda 320x200 x20: %lld differing frames, %lld unfinished, "
-              "%lld swept pixels\n",
-              scene.c_str(), static_cast<long long>(differing), static_cast<long long>(unfinished),
-              static_cast<long long>(swept));
+  std::printf(
+      "[ measure ] %s dp vs sp cuda 320x200 x20: %lld differing frames, %lld unfinished, "
+      "%lld swept pixels\n",
+      scene.c_str(), static_cast<long long>(differing), static_cast<long long>(unfinished),
+      static_cast<long long>(swept));
   EXPECT_EQ(unfinished, 0);
 }
 

@@ -120,7 +120,8 @@ int runRender(const RenderFlags& flags) {
       std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
                   static_cast<unsigned long long>(s.launches),
                   static_cast<unsigned long long>(s.launchFailures),
-                  static_cast<unsigned long long>(s.deferred), static_cast<long long>(s.sweptPixels));
+                  static_cast<unsigned long long>(s.deferred),
+                  static_cast<long long>(s.sweptPixels));
     std::fflush(stdout);
   });
   writeStatsJson(dir + "/stats.json", o, frames, memory);

@@ -1,6 +1,8 @@
 // Atomics for the one-source bodies: CUDA atomics on the GPU, std::atomic_ref on the CPU (so the
 // CPU backend runs the same protocol under ThreadSanitizer). Loads acquire and stores release,
-// which is what publishing a brick (write samples, fence, then entry) needs.
+// which is what publishing a brick (write samples, fence, then entry) needs; on the CPU they are
+// sequentially consistent, which also orders dp's store-then-load (fenceSeqCst is then a no-op:
+// ThreadSanitizer does not model standalone fences).
 #pragma once
 
 #include <cstdint>
@@ -18,7 +20,7 @@ GVDP_HD GVDP_INLINE uint32_t atomicCas32(uint32_t* p, uint32_t expected, uint32_
   return atomicCAS(p, expected, desired);
 #else
   std::atomic_ref<uint32_t>(*p).compare_exchange_strong(expected, desired,
-                                                        std::memory_order_acq_rel);
+                                                        std::memory_order_seq_cst);
   return expected;  // the value found: equal to the argument on success
 #endif
 }
@@ -35,7 +37,7 @@ GVDP_HD GVDP_INLINE uint32_t atomicExch32(uint32_t* p, uint32_t v) {
 #if GVDP_IS_GPU_CODE
   return atomicExch(p, v);
 #else
-  return std::atomic_ref<uint32_t>(*p).exchange(v, std::memory_order_acq_rel);
+  return std::atomic_ref<uint32_t>(*p).exchange(v, std::memory_order_seq_cst);
 #endif
 }
 
@@ -45,7 +47,7 @@ GVDP_HD GVDP_INLINE uint32_t loadAcquire32(const uint32_t* p) {
   __threadfence();
   return v;
 #else
-  return std::atomic_ref<uint32_t>(*const_cast<uint32_t*>(p)).load(std::memory_order_acquire);
+  return std::atomic_ref<uint32_t>(*const_cast<uint32_t*>(p)).load(std::memory_order_seq_cst);
 #endif
 }
 
@@ -63,7 +65,7 @@ GVDP_HD GVDP_INLINE void storeRelease32(uint32_t* p, uint32_t v) {
   __threadfence();
   *reinterpret_cast<volatile uint32_t*>(p) = v;
 #else
-  std::atomic_ref<uint32_t>(*p).store(v, std::memory_order_release);
+  std::atomic_ref<uint32_t>(*p).store(v, std::memory_order_seq_cst);
 #endif
 }
 
@@ -79,8 +81,6 @@ GVDP_HD GVDP_INLINE void storeRelaxed32(uint32_t* p, uint32_t v) {
 GVDP_HD GVDP_INLINE void fenceSeqCst() {
 #if GVDP_IS_GPU_CODE
   __threadfence();
-#else
-  std::atomic_thread_fence(std::memory_order_seq_cst);
 #endif
 }
 

@@ -48,7 +48,8 @@ uint32_t BrickCacheCpu::refill() {
     order[s] = (static_cast<uint64_t>(timestamps_[s]) << 32) | s;
   std::sort(order.begin(), order.end());
   auto below = [&](uint64_t stamp) {
-    return static_cast<uint32_t>(std::lower_bound(order.begin(), order.end(), stamp << 32) - order.begin());
+    return static_cast<uint32_t>(std::lower_bound(order.begin(), order.end(), stamp << 32) -
+                                 order.begin());
   };
   uint32_t n = freeListLength(poolBricks_, below(1), below(frame_));
   for (uint32_t i = 0; i < n; ++i) freeSlots_[i] = static_cast<uint32_t>(order[i]);

@@ -29,8 +29,8 @@ struct CacheView {
   uint32_t freeCount;  // valid entries of freeSlots
   BrickKey* requests;  // production queue
   uint32_t requestCapacity;
-  uint32_t* counters;  // CacheCounter
-  uint32_t frame;      // current frame stamp (>= 1)
+  uint32_t* counters;         // CacheCounter
+  uint32_t frame;             // current frame stamp (>= 1)
   uint32_t degraded;          // nonzero: no production; rays fall back to coarser levels
   uint32_t degradeOnFailure;  // nonzero: a failed production degrades the frame (dp, pt)
   float voxelSize0;

@@ -41,7 +41,8 @@ struct CachedAccess {
   }
 
   GVDP_HD bool degraded() const {
-    return cache.degraded || (cache.degradeOnFailure && loadRelaxed32(&cache.counters[COUNTER_FAILED]));
+    return cache.degraded ||
+           (cache.degradeOnFailure && loadRelaxed32(&cache.counters[COUNTER_FAILED]));
   }
 
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) {

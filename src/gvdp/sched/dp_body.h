@@ -18,10 +18,10 @@ constexpr uint32_t RAY_FREE = 0, RAY_HELD = 1, RAY_DONE = 2;
 constexpr int DP_TILE_W = 32, DP_TILE_H = 16;
 
 enum DpCounter : int {
-  DP_PRODUCTIONS,     // production launches
-  DP_RELAUNCHES,      // render relaunches
-  DP_LAUNCH_FAILURES, // launches refused (pending-launch buffer full)
-  DP_DEFERRED,        // productions left to the host sweep (launch depth limit)
+  DP_PRODUCTIONS,      // production launches
+  DP_RELAUNCHES,       // render relaunches
+  DP_LAUNCH_FAILURES,  // launches refused (pending-launch buffer full)
+  DP_DEFERRED,         // productions left to the host sweep (launch depth limit)
   DP_COUNTER_COUNT
 };
 
@@ -99,7 +99,7 @@ GVDP_HD void dpRenderPixel(const DpContext& ctx, const Pool& pool, Launcher& lau
     storeRelease32(lock, RAY_FREE);
     fenceSeqCst();
     uint32_t e = loadAcquire32(access.stopEntry);
-    if (e == ENTRY_MISSING || e == ENTRY_IN_PRODUCTION) return;  // its relaunch will come
+    if (e == ENTRY_MISSING || e == ENTRY_IN_PRODUCTION) return;     // its relaunch will come
     if (atomicCas32(lock, RAY_FREE, RAY_HELD) != RAY_FREE) return;  // the relaunch has it
   }
 }

@@ -64,7 +64,10 @@ class DpCpu final : public Scheduler {
     for (int t = 0; t < dpTileCount(f); ++t) {
       int x = (t % ((f.width + DP_TILE_W - 1) / DP_TILE_W)) * DP_TILE_W;
       int y = (t / ((f.width + DP_TILE_W - 1) / DP_TILE_W)) * DP_TILE_H;
-      queue.push({false, {x, y, std::min(x + DP_TILE_W, f.width), std::min(y + DP_TILE_H, f.height)}, {}, nullptr});
+      queue.push({false,
+                  {x, y, std::min(x + DP_TILE_W, f.width), std::min(y + DP_TILE_H, f.height)},
+                  {},
+                  nullptr});
     }
     CpuLauncher launcher{&queue, &ctx};
     ThreadPool& threads = ThreadPool::global();
@@ -87,7 +90,8 @@ class DpCpu final : public Scheduler {
     stats.degraded = cache_.degraded() || counters[DP_LAUNCH_FAILURES] != 0 ||
                      cache_.counters()[COUNTER_FAILED] != 0;
     stats.cache = cache_.frameStats();
-    stats.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stats.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     stats.launches = counters[DP_PRODUCTIONS] + counters[DP_RELAUNCHES];
     stats.launchFailures = counters[DP_LAUNCH_FAILURES];
     return stats;
@@ -112,7 +116,8 @@ class DpCpu final : public Scheduler {
     next_.resize(f.pixelCount());
     live_.resize(f.pixelCount());
     // A degraded frame keeps degrading; the sweep itself may refill the free list.
-    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, static_cast<uint32_t>(stats.sweptPixels), false, stats);
+    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, static_cast<uint32_t>(stats.sweptPixels),
+                 false, stats);
   }
 
   BrickCacheCpu cache_;
@@ -123,6 +128,8 @@ class DpCpu final : public Scheduler {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o) { return std::make_unique<DpCpu>(o); }
+std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o) {
+  return std::make_unique<DpCpu>(o);
+}
 
 }  // namespace gvdp

@@ -34,7 +34,8 @@ class DpCuda final : public Scheduler {
     cache_.beginFrame(f);
     GVDP_CUDA_CHECK(cudaMemset(locks_.data(), 0, locks_.bytes()));  // RAY_FREE
     GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));
-    GVDP_CUDA_CHECK(cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));  // fresh rays
+    GVDP_CUDA_CHECK(
+        cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));  // fresh rays
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
     DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data()};

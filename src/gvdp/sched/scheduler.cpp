@@ -22,7 +22,9 @@ namespace {
 constexpr std::string_view SCHEDULER_NAMES[] = {"direct", "sp", "dp"};
 }
 
-std::string_view schedulerName(SchedulerKind k) { return SCHEDULER_NAMES[static_cast<int>(k)]; }
+std::string_view schedulerName(SchedulerKind k) {
+  return SCHEDULER_NAMES[static_cast<int>(k)];
+}
 
 SchedulerKind parseScheduler(std::string_view name) {
   for (int k = 0; k < 3; ++k)
@@ -35,15 +37,21 @@ std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options) {
     GVDP_INPUT_CHECK(cudaBuilt(), "backend 'cuda' unavailable: this gvdp was built without CUDA");
     GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
     switch (options.kind) {
-      case SchedulerKind::Direct: return makeDirectCuda();
-      case SchedulerKind::Sp: return makeSpCuda(options);
-      default: return makeDpCuda(options);
+      case SchedulerKind::Direct:
+        return makeDirectCuda();
+      case SchedulerKind::Sp:
+        return makeSpCuda(options);
+      default:
+        return makeDpCuda(options);
     }
   }
   switch (options.kind) {
-    case SchedulerKind::Direct: return makeDirectCpu();
-    case SchedulerKind::Sp: return makeSpCpu(options);
-    default: return makeDpCpu(options);
+    case SchedulerKind::Direct:
+      return makeDirectCpu();
+    case SchedulerKind::Sp:
+      return makeSpCpu(options);
+    default:
+      return makeDpCpu(options);
   }
 }
 

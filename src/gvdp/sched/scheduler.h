@@ -26,8 +26,8 @@ struct FrameStats {
   int index = 0;
   double ms = 0.0;  // GPU: CUDA events around the frame's work; CPU: wall clock
   int64_t unfinishedPixels = 0;
-  int passes = 0;         // render passes (sp iterations)
-  bool degraded = false;  // some bricks could not be produced: coarser levels stood in
+  int passes = 0;               // render passes (sp iterations)
+  bool degraded = false;        // some bricks could not be produced: coarser levels stood in
   uint64_t launches = 0;        // dp: device-side launches (productions + render relaunches)
   uint64_t launchFailures = 0;  // dp: launches refused (pending-launch buffer full)
   uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)

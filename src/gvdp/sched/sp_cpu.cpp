@@ -15,7 +15,8 @@ void produceQueued(const FrameSetup& f, BrickCacheCpu& cache) {
   uint32_t requests = std::min(cache.counters()[COUNTER_REQUESTS], view.requestCapacity);
   uint32_t failedBefore = cache.counters()[COUNTER_FAILED];
   const BrickKey* keys = cache.requests();
-  parallelFor(requests, [&](int64_t i) { cache.produce(f.scene, view, keys[i]); }, 1);
+  parallelFor(
+      requests, [&](int64_t i) { cache.produce(f.scene, view, keys[i]); }, 1);
   cache.clearRequests();
   if (cache.counters()[COUNTER_FAILED] != failedBefore && cache.refill() == 0)
     cache.setDegraded(true);
@@ -43,7 +44,8 @@ void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
           },
           TILE * TILE);
     } else {
-      parallelFor(liveCount, [&](int64_t i) { renderItem(static_cast<int>(live[i])); }, 32);
+      parallelFor(
+          liveCount, [&](int64_t i) { renderItem(static_cast<int>(live[i])); }, 32);
     }
     ++stats.passes;
     std::swap(live, next);

@@ -1,5 +1,5 @@
-#include "gvdp/sched/sp.h"
 #include "gvdp/sched/sp_cuda.h"
+#include "gvdp/sched/sp.h"
 #include "gvdp/sched/sp_loop_cuda.h"
 
 namespace gvdp {
@@ -18,8 +18,8 @@ void produceQueued(const FrameSetup& f, BrickCacheCuda& cache) {
 }
 }  // namespace
 
-void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b,
-                   uint32_t liveCount, bool tiled, FrameStats& stats) {
+void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b, uint32_t liveCount,
+                   bool tiled, FrameStats& stats) {
   produceQueued(f, cache);
   for (int pass = 0;; ++pass) {
     GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
@@ -52,8 +52,8 @@ int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b) {
 
 void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out) {
   out = Image(f.width, f.height);
-  GVDP_CUDA_CHECK(cudaMemcpy(out.pixels.data(), b.image.data(), b.image.bytes(),
-                             cudaMemcpyDeviceToHost));
+  GVDP_CUDA_CHECK(
+      cudaMemcpy(out.pixels.data(), b.image.data(), b.image.bytes(), cudaMemcpyDeviceToHost));
 }
 
 namespace {

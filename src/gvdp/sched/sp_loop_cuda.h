@@ -27,8 +27,8 @@ struct SpBuffersCuda {
 
 // With `tiled`, the first pass starts every pixel afresh in 8x8 tiles; otherwise it resumes the
 // `liveCount` rays listed in b.live. Queued bricks are produced first. Adds to stats.passes.
-void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b,
-                   uint32_t liveCount, bool tiled, FrameStats& stats);
+void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b, uint32_t liveCount,
+                   bool tiled, FrameStats& stats);
 
 // Resolves to b.image; returns the unfinished pixels.
 int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b);

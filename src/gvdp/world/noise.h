@@ -19,42 +19,16 @@ struct NoiseSample {
   Vec3f grad;  // per lattice unit
 };
 
+// One of the 12 cube-edge directions of improved noise (4 of them twice, to make 16), from the
+// hash bits by arithmetic. (A switch returning vector literals would compile, under relocatable
+// device code, to per-file constant tables that the device linker merges by name: wrong vectors.)
 GVDP_HD GVDP_INLINE Vec3f latticeGradient(int x, int y, int z, uint32_t seed) {
-  // The 12 cube-edge directions of improved noise (with 4 repeated to make 16).
-  switch (hash3(x, y, z, seed) & 15u) {
-    case 0:
-      return {1, 1, 0};
-    case 1:
-      return {-1, 1, 0};
-    case 2:
-      return {1, -1, 0};
-    case 3:
-      return {-1, -1, 0};
-    case 4:
-      return {1, 0, 1};
-    case 5:
-      return {-1, 0, 1};
-    case 6:
-      return {1, 0, -1};
-    case 7:
-      return {-1, 0, -1};
-    case 8:
-      return {0, 1, 1};
-    case 9:
-      return {0, -1, 1};
-    case 10:
-      return {0, 1, -1};
-    case 11:
-      return {0, -1, -1};
-    case 12:
-      return {1, 1, 0};
-    case 13:
-      return {-1, 1, 0};
-    case 14:
-      return {0, -1, 1};
-    default:
-      return {0, -1, -1};
-  }
+  uint32_t h = hash3(x, y, z, seed) & 15u;
+  int u = h < 8u ? 0 : 1;                               // first axis: x or y
+  int v = h < 4u ? 1 : (h == 12u || h == 14u ? 0 : 2);  // second axis
+  float su = (h & 1u) ? -1.0f : 1.0f, sv = (h & 2u) ? -1.0f : 1.0f;
+  return {(u == 0 ? su : 0.0f) + (v == 0 ? sv : 0.0f), (u == 1 ? su : 0.0f) + (v == 1 ? sv : 0.0f),
+          v == 2 ? sv : 0.0f};
 }
 
 // Noise at p (lattice units, double) with its gradient. Value roughly in [-1, 1].
