@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cmath>
-
-#include <cuda_runtime.h>
 
 #include "gvdp/cache/cache_kernels.h"
 
@@ -22,40 +19,8 @@ BrickCacheCuda::BrickCacheCuda(uint32_t poolBricks)
       freeCount_(2),
       sortTemp_(lruSortTempBytes(poolBricks)) {
   GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
-  // Atlas of slots, at most 16384 texels (1638 slots) per axis.
-  const int MAX_AXIS = 16384 / BRICK_SAMPLES;
-  int sx =
-      std::min(MAX_AXIS, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(poolBricks)))));
-  int sy = std::min(MAX_AXIS,
-                    static_cast<int>(std::ceil(std::sqrt(static_cast<double>(poolBricks) / sx))));
-  int sz = static_cast<int>((poolBricks + static_cast<uint32_t>(sx * sy) - 1) /
-                            static_cast<uint32_t>(sx * sy));
-  GVDP_INPUT_CHECK(sz <= MAX_AXIS, "bad --pool-bricks ", poolBricks, " (larger than a 3D texture)");
-  cudaChannelFormatDesc format = cudaCreateChannelDesc<uchar4>();
-  cudaExtent extent = make_cudaExtent(static_cast<size_t>(sx) * BRICK_SAMPLES,
-                                      static_cast<size_t>(sy) * BRICK_SAMPLES,
-                                      static_cast<size_t>(sz) * BRICK_SAMPLES);
-  GVDP_CUDA_CHECK(cudaMalloc3DArray(&atlas_, &format, extent, cudaArraySurfaceLoadStore));
-  atlasBytes_ = extent.width * extent.height * extent.depth * 4;
-
-  cudaResourceDesc resource{};
-  resource.resType = cudaResourceTypeArray;
-  resource.res.array.array = atlas_;
-  cudaTextureDesc texture{};
-  texture.addressMode[0] = texture.addressMode[1] = texture.addressMode[2] = cudaAddressModeClamp;
-  texture.filterMode = cudaFilterModeLinear;
-  texture.readMode = cudaReadModeNormalizedFloat;
-  texture.normalizedCoords = 0;
-  GVDP_CUDA_CHECK(cudaCreateTextureObject(&pool_.texture, &resource, &texture, nullptr));
-  GVDP_CUDA_CHECK(cudaCreateSurfaceObject(&pool_.surface, &resource));
-  pool_.slotsX = sx;
-  pool_.slotsY = sy;
-}
-
-BrickCacheCuda::~BrickCacheCuda() {
-  cudaDestroyTextureObject(pool_.texture);
-  cudaDestroySurfaceObject(pool_.surface);
-  cudaFreeArray(atlas_);
+  texels_ = DeviceBuffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
+  pool_.texels = texels_.data();
 }
 
 void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
@@ -139,7 +104,7 @@ CacheStats BrickCacheCuda::frameStats() {
 }
 
 MemoryReport BrickCacheCuda::memory() const {
-  return {{"brick_pool", atlasBytes_},
+  return {{"brick_pool", texels_.bytes()},
           {"indirection_table", entries_.bytes()},
           {"inverse_table", inverse_.bytes()},
           {"timestamps", timestamps_.bytes()},

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "gvdp/base/parallel.h"
-#include "gvdp/render/pool_cpu.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/dp.h"
 #include "gvdp/sched/dp_body.h"
 #include "gvdp/sched/sp_loop_cpu.h"
@@ -57,7 +57,7 @@ class DpCpu final : public Scheduler {
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
     DpContext ctx{f, view, payload_.data(), locks_.data(), counters};
-    CpuPool pool{cache_.texels()};
+    BrickPool pool{cache_.texels()};
 
     // Root launch: the screen in 32x16 tiles (not limited by the pending-launch capacity).
     TaskQueue<DpTask> queue(pendingLaunches_ + static_cast<size_t>(dpTileCount(f)));

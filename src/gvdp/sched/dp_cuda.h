@@ -1,7 +1,7 @@
 // Launchers of the CUDA dp kernels (dp_kernels.cu).
 #pragma once
 
-#include "gvdp/render/pool_gpu.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/dp_body.h"
 
 namespace gvdp {
@@ -12,6 +12,6 @@ constexpr int DP_MAX_DEPTH = 23;
 
 // Copies the frame's context to the device and launches the root render grid (32x16 tiles);
 // the whole tree of device launches has finished when the stream reaches the next command.
-void launchDpFrame(const DpContext& ctx, const GpuPool& pool);
+void launchDpFrame(const DpContext& ctx, const BrickPool& pool);
 
 }  // namespace gvdp

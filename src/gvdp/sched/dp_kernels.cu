@@ -6,7 +6,7 @@
 namespace gvdp {
 
 __device__ DpContext dpContext;  // the frame's context, read by every task (launches stay small)
-__device__ GpuPool dpPool;
+__device__ BrickPool dpPool;
 
 constexpr int DP_RELAUNCH_BLOCK = 16;
 
@@ -73,7 +73,7 @@ __global__ void __launch_bounds__(DP_TILE_W* DP_TILE_H) dpRootKernel() {
   dpRenderPixel(ctx, dpPool, launcher, pixel);
 }
 
-void launchDpFrame(const DpContext& ctx, const GpuPool& pool) {
+void launchDpFrame(const DpContext& ctx, const BrickPool& pool) {
   cudaMemcpyToSymbol(dpContext, &ctx, sizeof ctx);
   cudaMemcpyToSymbol(dpPool, &pool, sizeof pool);
   dpRootKernel<<<dpTileCount(ctx.frame), DP_TILE_W * DP_TILE_H>>>();

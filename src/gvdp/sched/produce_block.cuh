@@ -4,7 +4,7 @@
 #pragma once
 
 #include "gvdp/cache/cache_ops.h"
-#include "gvdp/render/pool_gpu.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/render/produce.h"
 
 namespace gvdp {
@@ -12,7 +12,7 @@ namespace gvdp {
 constexpr int PRODUCE_BLOCK = 512;
 
 __device__ inline void produceBrickBlock(const SceneParams& scene, const CacheView& cache,
-                                         const GpuPool& pool, const BrickKey& key) {
+                                         const BrickPool& pool, const BrickKey& key) {
   __shared__ uint32_t slot;
   Rgba8 values[2] = {0u, 0u};
   bool empty = true;

@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "gvdp/base/parallel.h"
-#include "gvdp/render/pool_cpu.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp.h"
 #include "gvdp/sched/sp_loop_cpu.h"
@@ -26,7 +26,7 @@ void produceQueued(const FrameSetup& f, BrickCacheCpu& cache) {
 void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
                   std::vector<uint32_t>& live, std::vector<uint32_t>& next, uint32_t liveCount,
                   bool tiled, FrameStats& stats) {
-  CpuPool pool{cache.texels()};
+  BrickPool pool{cache.texels()};
   produceQueued(f, cache);
   for (int pass = 0;; ++pass) {
     CacheView view = cache.view();

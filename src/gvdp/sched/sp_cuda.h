@@ -2,18 +2,18 @@
 #pragma once
 
 #include "gvdp/cache/cache_view.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/render/march.h"
-#include "gvdp/render/pool_gpu.h"
 
 namespace gvdp {
 
 // passCounters[0]: rays stopped in the pass (appended to `next`); [1]: unfinished at resolve.
-void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                            RayState* payload, uint32_t* next, uint32_t* passCounters);
-void launchRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                       RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
                       uint32_t* passCounters);
-void launchProduce(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+void launchProduce(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                    uint32_t requestCount);
 // Appends the pixels whose ray is not finished to `live`; passCounters[0] counts them.
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,

@@ -22,7 +22,7 @@ __device__ void appendStopped(bool stopped, uint32_t pixel, uint32_t* next, uint
 }
 
 __global__ void __launch_bounds__(RENDER_BLOCK)
-    firstRenderPassKernel(FrameSetup f, CacheView cache, GpuPool pool, RayState* payload,
+    firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                           uint32_t* next, uint32_t* passCounters) {
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
   bool stopped = false;
@@ -34,7 +34,7 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
 }
 
 __global__ void __launch_bounds__(RENDER_BLOCK)
-    renderPassKernel(FrameSetup f, CacheView cache, GpuPool pool, RayState* payload,
+    renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                      const uint32_t* live, uint32_t liveCount, uint32_t* next,
                      uint32_t* passCounters) {
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -44,7 +44,7 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
 }
 
 __global__ void __launch_bounds__(PRODUCE_BLOCK)
-    produceKernel(FrameSetup f, CacheView cache, GpuPool pool) {
+    produceKernel(FrameSetup f, CacheView cache, BrickPool pool) {
   produceBrickBlock(f.scene, cache, pool, cache.requests[blockIdx.x]);
 }
 
@@ -66,21 +66,21 @@ __global__ void resolveKernel(FrameSetup f, const RayState* payload, uint32_t* i
 
 }  // namespace
 
-void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                            RayState* payload, uint32_t* next, uint32_t* passCounters) {
   unsigned items = static_cast<unsigned>(tileCount(f) * TILE * TILE);
   firstRenderPassKernel<<<(items + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK>>>(
       f, cache, pool, payload, next, passCounters);
 }
 
-void launchRenderPass(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                       RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
                       uint32_t* passCounters) {
   renderPassKernel<<<(liveCount + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK>>>(
       f, cache, pool, payload, live, liveCount, next, passCounters);
 }
 
-void launchProduce(const FrameSetup& f, const CacheView& cache, const GpuPool& pool,
+void launchProduce(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                    uint32_t requestCount) {
   if (requestCount) produceKernel<<<requestCount, PRODUCE_BLOCK>>>(f, cache, pool);
 }
