@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "gvdp/base/parallel.h"
 #include "gvdp/bench/sequence.h"
 #include "gvdp/io/stats.h"
+#include "gvdp/profile/timeline_export.h"
 
 namespace gvdp {
 namespace {
@@ -29,13 +31,14 @@ constexpr int UNSET = std::numeric_limits<int>::min();  // flag not given: use t
 
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
-  std::string origin = "0,0,0", out = "out";
+  std::string origin = "0,0,0", out = "out", timeline;
   int frames = UNSET, width = UNSET, height = UNSET, levels = DEFAULT_LEVELS;
   int64_t poolBricks = UNSET, poolMb = UNSET, pendingLaunches = UNSET;
   float fov = DEFAULT_FOV_DEGREES;
 };
 
-void addRenderFlags(CLI::App* cmd, RenderFlags& f) {
+// The flags of `render`; `timeline` takes them too, but its --out is the picture.
+void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool withOut = true) {
   cmd->add_option("--scene", f.scene, "scene: " + sceneNames());
   cmd->add_option("--movement", f.movement, "camera path: " + movementNames());
   cmd->add_option("--frames", f.frames, "frames to render (default: 24 on the GPU, 6 on the CPU)");
@@ -53,7 +56,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f) {
   cmd->add_option("--levels", f.levels, "clipmap levels (voxel size doubles per level)");
   cmd->add_option("--fov", f.fov, "horizontal field of view, degrees");
   cmd->add_option("--origin", f.origin, "x,y,z added to the scene's start position");
+  if (!withOut) return;
   cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
+  cmd->add_option("--timeline", f.timeline,
+                  "also record every frame's GPU-cores timeline: DIR/timeline_NNNN.png and .json");
 }
 
 SequenceOptions toOptions(const RenderFlags& f) {
@@ -87,6 +93,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   }
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
+  o.scheduler.timeline = !f.timeline.empty();
   validate(o);
   return o;
 }
@@ -97,6 +104,24 @@ std::string prepareOutDir(const std::string& dir) {
   GVDP_INPUT_CHECK(!ec && std::filesystem::is_directory(dir), "cannot create output directory '",
                    dir, "'", ec ? ": " + ec.message() : "");
   return dir;
+}
+
+void writeTimeline(const FrameStats& s, const std::string& dir, int index,
+                   const SequenceOptions& o) {
+  prepareOutDir(dir);
+  char base[64];
+  std::snprintf(base, sizeof base, "/timeline_%04d", index);
+  const TimelineCapture& t = s.timeline;
+  std::string title = std::string(schedulerName(o.scheduler.kind)) + " on " +
+                      std::string(backendName(o.scheduler.backend)) + ", " + o.scene + " frame " +
+                      std::to_string(index) + ", " + std::to_string(o.width) + "x" +
+                      std::to_string(o.height);
+  writePng(timelineImage(t.records, t.lanes, title), dir + base + ".png");
+  std::ofstream json(dir + base + ".json");
+  json << chromeTraceJson(t.records, t.lanes);
+  GVDP_INPUT_CHECK(json.good(), "cannot write '", dir, base, ".json'");
+  std::printf("           %s%s\n", timelineSummary(timelineStats(t.records, t.lanes)).c_str(),
+              t.overflow ? " (records overflowed)" : "");
 }
 
 int runRender(const RenderFlags& flags) {
@@ -111,6 +136,7 @@ int runRender(const RenderFlags& flags) {
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
     writePng(image, dir + name);
+    if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
     frames.push_back(s);
     std::printf("frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s\n",
                 s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
@@ -143,6 +169,35 @@ int runRender(const RenderFlags& flags) {
   return 0;
 }
 
+// gvdp timeline: renders frames 0..K and draws the timeline of frame K.
+int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
+                const std::string& trace) {
+  GVDP_INPUT_CHECK(frame >= 0 && frame <= 100000, "bad --frame ", frame, " (expected 0..100000)");
+  RenderFlags f = flags;
+  f.frames = frame + 1;
+  SequenceOptions o = toOptions(f);
+  o.scheduler.timeline = true;
+  FrameStats last;
+  renderSequence(o, [&](const Image&, const FrameStats& s) { last = s; });
+  const TimelineCapture& t = last.timeline;
+  std::string title = std::string(schedulerName(o.scheduler.kind)) + " on " +
+                      std::string(backendName(o.scheduler.backend)) + ", " + o.scene + " " +
+                      std::string(movementName(o.movement)) + " frame " + std::to_string(frame) +
+                      ", " + std::to_string(o.width) + "x" + std::to_string(o.height) + ", " +
+                      std::to_string(last.ms) + " ms";
+  writePng(timelineImage(t.records, t.lanes, title), png);
+  if (!trace.empty()) {
+    std::ofstream json(trace);
+    json << chromeTraceJson(t.records, t.lanes);
+    GVDP_INPUT_CHECK(json.good(), "cannot write '", trace, "'");
+  }
+  std::printf("frame %d: %.2f ms; %s%s\nwrote %s%s%s\n", frame, last.ms,
+              timelineSummary(timelineStats(t.records, t.lanes)).c_str(),
+              t.overflow ? " (records overflowed)" : "", png.c_str(), trace.empty() ? "" : ", ",
+              trace.c_str());
+  return 0;
+}
+
 int runScenes() {
   for (const SceneInfo& s : allScenes())
     std::printf("%-16s %s\n%16s voxel size %.4g, start (%.1f, %.1f, %.1f), %.2f units/frame\n",
@@ -167,12 +222,23 @@ int run(int argc, char** argv) {
   RenderFlags render;
   CLI::App* renderCmd = app.add_subcommand("render", "render a camera path to PNG frames");
   addRenderFlags(renderCmd, render);
+  RenderFlags timeline;
+  int timelineFrame = 5;
+  std::string timelinePng = "timeline.png", timelineTrace;
+  CLI::App* timelineCmd =
+      app.add_subcommand("timeline", "draw the GPU-cores timeline of one frame (paper Fig. 5)");
+  addRenderFlags(timelineCmd, timeline, false);
+  timelineCmd->add_option("--frame", timelineFrame,
+                          "the frame to record (frames before it warm up)");
+  timelineCmd->add_option("--out", timelinePng, "timeline picture (default timeline.png)");
+  timelineCmd->add_option("--trace", timelineTrace, "Chrome trace-event JSON (Perfetto)");
   CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes");
   CLI::App* infoCmd = app.add_subcommand("info", "build, devices and defaults");
   if (argc > 1 && argv[1][0] != '-') {
     std::string command = argv[1];
-    GVDP_INPUT_CHECK(command == "render" || command == "scenes" || command == "info",
-                     "unknown command '", command, "' (commands: render, scenes, info)");
+    GVDP_INPUT_CHECK(
+        command == "render" || command == "timeline" || command == "scenes" || command == "info",
+        "unknown command '", command, "' (commands: render, timeline, scenes, info)");
   }
   try {
     app.parse(argc, argv);
@@ -184,6 +250,8 @@ int run(int argc, char** argv) {
     throw InputError(e.what());
   }
   if (renderCmd->parsed()) return runRender(render);
+  if (timelineCmd->parsed())
+    return runTimeline(timeline, timelineFrame, timelinePng, timelineTrace);
   if (scenesCmd->parsed()) return runScenes();
   if (infoCmd->parsed()) return runInfo();
   return 2;

@@ -1,5 +1,7 @@
 #include "gvdp/base/parallel.h"
 
+#include <chrono>
+
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
@@ -29,6 +31,33 @@ void ThreadPool::drain(int worker) {
   }
 }
 
+namespace {
+std::atomic<TaskObserver> observer{nullptr};
+}
+
+void setTaskObserver(TaskObserver o) {
+  observer = o;
+}
+TaskObserver taskObserver() {
+  return observer;
+}
+
+uint64_t steadyNanoseconds() {
+  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::steady_clock::now().time_since_epoch())
+                                   .count());
+}
+
+// With an observer, a worker's share of a run (if it got any chunk) is reported as one task.
+void ThreadPool::drainRecorded(int worker) {
+  TaskObserver o = observer;
+  if (!o || kind_ == NO_RECORD) return drain(worker);
+  uint64_t start = steadyNanoseconds();
+  int64_t before = next_.load();
+  drain(worker);
+  if (next_.load() > before) o(kind_, worker, start, steadyNanoseconds());
+}
+
 void ThreadPool::workerLoop(int worker) {
   uint64_t seen = 0;
   for (;;) {
@@ -39,7 +68,7 @@ void ThreadPool::workerLoop(int worker) {
       seen = generation_;
       ++active_;
     }
-    drain(worker);
+    drainRecorded(worker);
     {
       std::lock_guard lock(mutex_);
       if (--active_ == 0) done_.notify_all();
@@ -48,18 +77,19 @@ void ThreadPool::workerLoop(int worker) {
 }
 
 void ThreadPool::run(int64_t n, int64_t chunk,
-                     const std::function<void(int64_t, int64_t, int)>& body) {
+                     const std::function<void(int64_t, int64_t, int)>& body, uint8_t kind) {
   if (n <= 0) return;
   {
     std::lock_guard lock(mutex_);
     body_ = &body;
     n_ = n;
     chunk_ = std::max<int64_t>(chunk, 1);
+    kind_ = kind;
     next_ = 0;
     ++generation_;
   }
   wake_.notify_all();
-  drain(0);
+  drainRecorded(0);
   std::unique_lock lock(mutex_);
   // Workers that woke late find no chunk left and leave at once; wait for those still busy.
   done_.wait(lock, [&] { return active_ == 0; });

@@ -23,8 +23,10 @@ class ThreadPool {
   int size() const { return static_cast<int>(workers_.size()) + 1; }
 
   // Runs body(begin, end, worker) over [0, n) in chunks of `chunk`; returns when all are done.
-  // worker is in [0, size()): 0 is the calling thread.
-  void run(int64_t n, int64_t chunk, const std::function<void(int64_t, int64_t, int)>& body);
+  // worker is in [0, size()): 0 is the calling thread. `kind` labels the work in the timeline
+  // (profile/): while one is recorded, every worker leaves one record per run.
+  void run(int64_t n, int64_t chunk, const std::function<void(int64_t, int64_t, int)>& body,
+           uint8_t kind = 0);
 
   // The process-wide pool, sized from GVDP_THREADS or the hardware concurrency.
   static ThreadPool& global();
@@ -32,24 +34,36 @@ class ThreadPool {
  private:
   void workerLoop(int worker);
   void drain(int worker);
+  void drainRecorded(int worker);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void(int64_t, int64_t, int)>* body_ = nullptr;
   int64_t n_ = 0, chunk_ = 1;
+  uint8_t kind_ = 0;
   std::atomic<int64_t> next_{0};
   int active_ = 0;
   uint64_t generation_ = 0;
   bool stop_ = false;
 };
 
-// fn(i) for every i in [0, n) on the global pool.
+// Profiling hook (profile/ installs one): a worker ran tasks of `kind` from start to end (ns).
+using TaskObserver = void (*)(uint8_t kind, int worker, uint64_t startNs, uint64_t endNs);
+void setTaskObserver(TaskObserver observer);  // nullptr: off
+TaskObserver taskObserver();
+uint64_t steadyNanoseconds();
+constexpr uint8_t NO_RECORD = 255;  // a run whose tasks report themselves
+
+// fn(i) for every i in [0, n) on the global pool; `kind` is a TaskKind (profile/timeline.h).
 template <class F>
-void parallelFor(int64_t n, F&& fn, int64_t chunk = 64) {
-  ThreadPool::global().run(n, chunk, [&](int64_t b, int64_t e, int) {
-    for (int64_t i = b; i < e; ++i) fn(i);
-  });
+void parallelFor(int64_t n, F&& fn, int64_t chunk = 64, uint8_t kind = 0) {
+  ThreadPool::global().run(
+      n, chunk,
+      [&](int64_t b, int64_t e, int) {
+        for (int64_t i = b; i < e; ++i) fn(i);
+      },
+      kind);
 }
 
 }  // namespace gvdp

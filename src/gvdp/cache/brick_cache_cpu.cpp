@@ -5,6 +5,7 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/base/parallel.h"
+#include "gvdp/profile/timeline.h"
 #include "gvdp/render/produce.h"
 
 namespace gvdp {
@@ -33,7 +34,7 @@ void BrickCacheCpu::beginFrame(const FrameSetup& frame) {
     CacheView v = view();
     parallelFor(
         u.slabs.total(), [&](int64_t i) { resetSlabItem(v, u.slabs, static_cast<uint32_t>(i)); },
-        4096);
+        4096, static_cast<uint8_t>(TaskKind::Cache));
   }
   size_t rays = static_cast<size_t>(frame.pixelCount());
   if (requests_.size() < rays) requests_.resize(rays);
@@ -57,7 +58,8 @@ uint32_t BrickCacheCpu::refill() {
   counters_[COUNTER_FREE_NEXT] = 0;
   CacheView v = view();
   parallelFor(
-      n, [&](int64_t i) { unmapSlot(v, freeSlots_[i]); }, 256);
+      n, [&](int64_t i) { unmapSlot(v, freeSlots_[i]); }, 256,
+      static_cast<uint8_t>(TaskKind::Cache));
   ++refills_;
   return n;
 }

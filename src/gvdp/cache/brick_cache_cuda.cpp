@@ -24,6 +24,7 @@ BrickCacheCuda::BrickCacheCuda(uint32_t poolBricks)
 }
 
 void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
+  NvtxRange range("cache: clipmap move and LRU refill");
   ClipmapTracker::Update u = tracker_.next(frame);
   clipmap_ = u.clipmap;
   GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));

@@ -2,6 +2,7 @@
 #include <cub/device/device_radix_sort.cuh>
 
 #include "gvdp/cache/cache_kernels.h"
+#include "gvdp/profile/timeline_device.cuh"
 
 namespace gvdp {
 namespace {
@@ -12,12 +13,14 @@ inline unsigned blocksFor(uint32_t n) {
 }
 
 __global__ void resetSlabsKernel(CacheView cache, SlabJobs jobs) {
+  BlockTimer timer(TaskKind::Cache);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < jobs.total()) resetSlabItem(cache, jobs, i);
 }
 
 __global__ void prepareLruSortKernel(const uint32_t* timestamps, uint32_t* keys, uint32_t* values,
                                      uint32_t n) {
+  BlockTimer timer(TaskKind::Cache);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) {
     keys[i] = timestamps[i];
@@ -27,12 +30,14 @@ __global__ void prepareLruSortKernel(const uint32_t* timestamps, uint32_t* keys,
 
 __global__ void countOlderKernel(const uint32_t* sortedKeys, uint32_t n, uint32_t frame,
                                  uint32_t* count) {
+  BlockTimer timer(TaskKind::Cache);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   // Sorted ascending: the keys below `frame` are a prefix; its last element writes the length.
   if (i < n && sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame)) *count = i + 1;
 }
 
 __global__ void unmapSlotsKernel(CacheView cache, const uint32_t* slots, uint32_t n) {
+  BlockTimer timer(TaskKind::Cache);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) unmapSlot(cache, slots[i]);
 }

@@ -10,6 +10,7 @@ namespace {
 class DirectCpu final : public Scheduler {
  public:
   FrameStats render(const FrameSetup& frame, Image& out) override {
+    timelineBegin();
     auto t0 = std::chrono::steady_clock::now();
     out = Image(frame.width, frame.height);
     uint32_t* pixels = out.pixels.data();
@@ -19,6 +20,7 @@ class DirectCpu final : public Scheduler {
     FrameStats s;
     s.index = frame.frameIndex;
     s.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    timelineEnd(s);
     return s;
   }
 

@@ -11,6 +11,7 @@ class DirectCuda final : public Scheduler {
   FrameStats render(const FrameSetup& frame, Image& out) override {
     size_t n = static_cast<size_t>(frame.pixelCount());
     if (image_.size() != n) image_ = DeviceBuffer<uint32_t>(n);
+    timelineBegin();
     timer_.start();
     launchDirect(frame, image_.data(), nullptr);
     GVDP_CUDA_CHECK(cudaGetLastError());
@@ -18,6 +19,7 @@ class DirectCuda final : public Scheduler {
     FrameStats s;
     s.index = frame.frameIndex;
     s.ms = timer_.ms();
+    timelineEnd(s);
     out = Image(frame.width, frame.height);
     GVDP_CUDA_CHECK(cudaMemcpy(out.pixels.data(), image_.data(), n * 4, cudaMemcpyDeviceToHost));
     return s;

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "gvdp/base/parallel.h"
+#include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/dp.h"
 #include "gvdp/sched/dp_body.h"
@@ -46,6 +47,7 @@ class DpCpu final : public Scheduler {
         pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES) {}
 
   FrameStats render(const FrameSetup& f, Image& out) override {
+    timelineBegin();
     auto t0 = std::chrono::steady_clock::now();
     FrameStats stats;
     stats.index = f.frameIndex;
@@ -71,20 +73,27 @@ class DpCpu final : public Scheduler {
     }
     CpuLauncher launcher{&queue, &ctx};
     ThreadPool& threads = ThreadPool::global();
-    threads.run(threads.size(), 1, [&](int64_t, int64_t, int) {
-      DpTask task;
-      while (queue.pop(task)) {
-        if (task.produce) {
-          cache_.produce(f.scene, ctx.cache, task.key);
-          launcher.relaunch(brickScreenRect(f, ctx.cache.clipmap, task.key));
-        } else {
-          for (int y = task.rect.y0; y < task.rect.y1; ++y)
-            for (int x = task.rect.x0; x < task.rect.x1; ++x)
-              dpRenderPixel(ctx, pool, launcher, y * f.width + x);
-        }
-        queue.finished();
-      }
-    });
+    threads.run(
+        threads.size(), 1,
+        [&](int64_t, int64_t, int worker) {
+          DpTask task;
+          while (queue.pop(task)) {
+            uint64_t start = steadyNanoseconds();
+            if (task.produce) {
+              cache_.produce(f.scene, ctx.cache, task.key);
+              launcher.relaunch(brickScreenRect(f, ctx.cache.clipmap, task.key));
+            } else {
+              for (int y = task.rect.y0; y < task.rect.y1; ++y)
+                for (int x = task.rect.x0; x < task.rect.x1; ++x)
+                  dpRenderPixel(ctx, pool, launcher, y * f.width + x);
+            }
+            if (TaskObserver o = taskObserver())  // one timeline record per task
+              o(static_cast<uint8_t>(task.produce ? TaskKind::Produce : TaskKind::Render), worker,
+                start, steadyNanoseconds());
+            queue.finished();
+          }
+        },
+        NO_RECORD);
     sweep(f, stats);
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     stats.degraded = cache_.degraded() || counters[DP_LAUNCH_FAILURES] != 0 ||
@@ -94,6 +103,7 @@ class DpCpu final : public Scheduler {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     stats.launches = counters[DP_PRODUCTIONS] + counters[DP_RELAUNCHES];
     stats.launchFailures = counters[DP_LAUNCH_FAILURES];
+    timelineEnd(stats);
     return stats;
   }
 

@@ -30,6 +30,8 @@ class DpCuda final : public Scheduler {
     size_t freeBefore = 0, freeAfter = 0, total = 0;
     if (firstFrame_) GVDP_CUDA_CHECK(cudaMemGetInfo(&freeBefore, &total));
 
+    timelineBegin();
+    NvtxRange range("dp frame");
     timer_.start();
     cache_.beginFrame(f);
     GVDP_CUDA_CHECK(cudaMemset(locks_.data(), 0, locks_.bytes()));  // RAY_FREE
@@ -39,12 +41,17 @@ class DpCuda final : public Scheduler {
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
     DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data()};
-    launchDpFrame(ctx, cache_.pool());
+    {
+      NvtxRange schedule("dp device schedule");
+      launchDpFrame(ctx, cache_.pool());
+      GVDP_CUDA_CHECK(cudaDeviceSynchronize());
+    }
     GVDP_CUDA_CHECK(cudaGetLastError());
     sweep(f, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
     timer_.stop();
     stats.ms = timer_.ms();
+    timelineEnd(stats);
     if (firstFrame_) {
       GVDP_CUDA_CHECK(cudaMemGetInfo(&freeAfter, &total));
       cdpBytes_ += freeBefore > freeAfter ? freeBefore - freeAfter : 0;
@@ -73,6 +80,7 @@ class DpCuda final : public Scheduler {
   // Rays the device-side schedule left unfinished (refused launches, deferred productions) are
   // finished by the sp loop; with the race-free relaunch there are none otherwise.
   void sweep(const FrameSetup& f, FrameStats& stats) {
+    NvtxRange range("dp sweep");
     GVDP_CUDA_CHECK(cudaMemset(buffers_.counters.data(), 0, 4));
     launchCompactUnfinished(f, buffers_.payload.data(), buffers_.live.data(),
                             buffers_.counters.data());

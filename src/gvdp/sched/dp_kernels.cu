@@ -1,5 +1,6 @@
 // CUDA kernels of the dp scheduler: render tasks and production tasks that launch each other
 // with CUDA Dynamic Parallelism (CDP2, fire-and-forget streams), as in paper 3.3.
+#include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/dp_cuda.h"
 #include "gvdp/sched/produce_block.cuh"
 
@@ -51,6 +52,7 @@ struct GpuLauncher {
 };
 
 __global__ void __launch_bounds__(PRODUCE_BLOCK) dpProduceKernel(BrickKey key, int depth) {
+  BlockTimer timer(TaskKind::Produce);
   const DpContext& ctx = dpContext;
   produceBrickBlock(ctx.frame.scene, ctx.cache, dpPool, key);
   if (threadIdx.x == 0)
@@ -58,6 +60,7 @@ __global__ void __launch_bounds__(PRODUCE_BLOCK) dpProduceKernel(BrickKey key, i
 }
 
 __global__ void dpRenderRectKernel(PixelRect rect, int depth) {
+  BlockTimer timer(TaskKind::Render);
   int x = rect.x0 + static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   int y = rect.y0 + static_cast<int>(blockIdx.y * blockDim.y + threadIdx.y);
   if (x >= rect.x1 || y >= rect.y1) return;
@@ -66,6 +69,7 @@ __global__ void dpRenderRectKernel(PixelRect rect, int depth) {
 }
 
 __global__ void __launch_bounds__(DP_TILE_W* DP_TILE_H) dpRootKernel() {
+  BlockTimer timer(TaskKind::Render);
   const DpContext& ctx = dpContext;
   int pixel = dpTilePixel(ctx.frame, static_cast<int>(blockIdx.x), static_cast<int>(threadIdx.x));
   if (pixel < 0) return;

@@ -19,4 +19,8 @@ std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions&) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
+std::unique_ptr<FrameTimeline> makeGpuFrameTimeline() {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
 }  // namespace gvdp

@@ -32,7 +32,8 @@ SchedulerKind parseScheduler(std::string_view name) {
   throw InputError("unknown scheduler '" + std::string(name) + "' (schedulers: sp, dp, direct)");
 }
 
-std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options) {
+namespace {
+std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options) {
   if (options.backend == Backend::Cuda) {
     GVDP_INPUT_CHECK(cudaBuilt(), "backend 'cuda' unavailable: this gvdp was built without CUDA");
     GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
@@ -53,6 +54,15 @@ std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options) {
     default:
       return makeDpCpu(options);
   }
+}
+}  // namespace
+
+std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options) {
+  std::unique_ptr<Scheduler> s = makeBare(options);
+  if (options.timeline)
+    s->recordTimeline(options.backend == Backend::Cuda ? makeGpuFrameTimeline()
+                                                       : makeCpuFrameTimeline());
+  return s;
 }
 
 }  // namespace gvdp

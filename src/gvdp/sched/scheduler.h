@@ -10,6 +10,7 @@
 
 #include "gvdp/cache/cache_host.h"
 #include "gvdp/io/image.h"
+#include "gvdp/profile/frame_timeline.h"
 #include "gvdp/render/frame.h"
 
 namespace gvdp {
@@ -33,6 +34,7 @@ struct FrameStats {
   uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)
   int64_t sweptPixels = 0;      // dp: rays the device-side schedule left to the sp sweep
   CacheStats cache;
+  TimelineCapture timeline;  // when SchedulerOptions::timeline
 };
 
 struct SchedulerOptions {
@@ -40,6 +42,7 @@ struct SchedulerOptions {
   SchedulerKind kind = SchedulerKind::Sp;
   uint32_t poolBricks = 0;       // 0: the backend's default
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
+  bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
 };
 
 // Default pool sizes: about 2 GB on the GPU (the paper), 128 MB on the CPU.
@@ -50,10 +53,23 @@ constexpr uint32_t DEFAULT_PENDING_LAUNCHES = 1u << 16;
 class Scheduler {
  public:
   virtual ~Scheduler() = default;
+  // Records the timeline of the following frames into FrameStats::timeline.
+  void recordTimeline(std::unique_ptr<FrameTimeline> t) { timeline_ = std::move(t); }
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
   virtual FrameStats render(const FrameSetup& frame, Image& out) = 0;
   // Bytes of every structure the scheduler holds (after the last frame).
   virtual MemoryReport memory() const = 0;
+
+ protected:
+  void timelineBegin() {
+    if (timeline_) timeline_->begin();
+  }
+  void timelineEnd(FrameStats& s) {
+    if (timeline_) s.timeline = timeline_->end();
+  }
+
+ private:
+  std::unique_ptr<FrameTimeline> timeline_;
 };
 
 // Throws InputError when the backend is not available (no CUDA build or no device).

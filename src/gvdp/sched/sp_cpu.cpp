@@ -2,6 +2,7 @@
 #include <vector>
 
 #include "gvdp/base/parallel.h"
+#include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp.h"
@@ -16,7 +17,8 @@ void produceQueued(const FrameSetup& f, BrickCacheCpu& cache) {
   uint32_t failedBefore = cache.counters()[COUNTER_FAILED];
   const BrickKey* keys = cache.requests();
   parallelFor(
-      requests, [&](int64_t i) { cache.produce(f.scene, view, keys[i]); }, 1);
+      requests, [&](int64_t i) { cache.produce(f.scene, view, keys[i]); }, 1,
+      static_cast<uint8_t>(TaskKind::Produce));
   cache.clearRequests();
   if (cache.counters()[COUNTER_FAILED] != failedBefore && cache.refill() == 0)
     cache.setDegraded(true);
@@ -42,10 +44,11 @@ void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
             int pixel = tiledPixel(f, static_cast<int>(i));
             if (pixel >= 0) renderItem(pixel);
           },
-          TILE * TILE);
+          TILE * TILE, static_cast<uint8_t>(TaskKind::Render));
     } else {
       parallelFor(
-          liveCount, [&](int64_t i) { renderItem(static_cast<int>(live[i])); }, 32);
+          liveCount, [&](int64_t i) { renderItem(static_cast<int>(live[i])); }, 32,
+          static_cast<uint8_t>(TaskKind::Render));
     }
     ++stats.passes;
     std::swap(live, next);
@@ -66,7 +69,7 @@ int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out) {
         out.pixels[i] = resolveRay(f, payload, static_cast<int>(i), &u);
         if (u) atomicAdd32(&unfinished, 1u);
       },
-      256);
+      256, static_cast<uint8_t>(TaskKind::Resolve));
   return unfinished;
 }
 
@@ -78,6 +81,7 @@ class SpCpu final : public Scheduler {
       : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CPU) {}
 
   FrameStats render(const FrameSetup& f, Image& out) override {
+    timelineBegin();
     auto t0 = std::chrono::steady_clock::now();
     FrameStats stats;
     stats.index = f.frameIndex;
@@ -92,6 +96,7 @@ class SpCpu final : public Scheduler {
     stats.cache = cache_.frameStats();
     stats.ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    timelineEnd(stats);
     return stats;
   }
 

@@ -6,6 +6,7 @@ namespace gvdp {
 
 namespace {
 void produceQueued(const FrameSetup& f, BrickCacheCuda& cache) {
+  NvtxRange range("production pass");
   uint32_t before[COUNTER_COUNT], after[COUNTER_COUNT];
   cache.readCounters(before);
   uint32_t requests = std::min(before[COUNTER_REQUESTS], cache.view().requestCapacity);
@@ -22,6 +23,7 @@ void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b,
                    bool tiled, FrameStats& stats) {
   produceQueued(f, cache);
   for (int pass = 0;; ++pass) {
+    NvtxRange range("render pass");
     GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
     if (pass == 0 && tiled) {
       launchFirstRenderPass(f, cache.view(), cache.pool(), b.payload.data(), b.next.data(),
@@ -67,12 +69,15 @@ class SpCuda final : public Scheduler {
     FrameStats stats;
     stats.index = f.frameIndex;
     buffers_.resize(static_cast<size_t>(f.pixelCount()));
+    timelineBegin();
+    NvtxRange range("sp frame");
     timer_.start();
     cache_.beginFrame(f);
     runSpLoopCuda(f, cache_, buffers_, 0, true, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
     timer_.stop();
     stats.ms = timer_.ms();
+    timelineEnd(stats);
     downloadImage(f, buffers_, out);
     stats.degraded = cache_.degraded();
     stats.cache = cache_.frameStats();

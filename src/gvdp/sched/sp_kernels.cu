@@ -1,5 +1,6 @@
 // CUDA kernels of the sp scheduler: render passes (Algorithm 1 over the tiled screen, then over
 // the compacted list of stopped rays), production (Algorithm 2, one block per brick) and resolve.
+#include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/produce_block.cuh"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp_cuda.h"
@@ -24,6 +25,7 @@ __device__ void appendStopped(bool stopped, uint32_t pixel, uint32_t* next, uint
 __global__ void __launch_bounds__(RENDER_BLOCK)
     firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                           uint32_t* next, uint32_t* passCounters) {
+  BlockTimer timer(TaskKind::Render);
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
   bool stopped = false;
   if (pixel >= 0) {
@@ -37,6 +39,7 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
     renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                      const uint32_t* live, uint32_t liveCount, uint32_t* next,
                      uint32_t* passCounters) {
+  BlockTimer timer(TaskKind::Render);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
   bool stopped = i < liveCount && renderRay(f, cache, pool, payload, static_cast<int>(pixel));
@@ -45,11 +48,13 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
 
 __global__ void __launch_bounds__(PRODUCE_BLOCK)
     produceKernel(FrameSetup f, CacheView cache, BrickPool pool) {
+  BlockTimer timer(TaskKind::Produce);
   produceBrickBlock(f.scene, cache, pool, cache.requests[blockIdx.x]);
 }
 
 __global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, uint32_t* live,
                                         uint32_t* passCounters) {
+  BlockTimer timer(TaskKind::Sweep);
   int pixel = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   bool unfinished = pixel < f.pixelCount() && !payload[pixel].finished(f.lod);
   appendStopped(unfinished, static_cast<uint32_t>(pixel), live, &passCounters[0]);
@@ -57,6 +62,7 @@ __global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, u
 
 __global__ void resolveKernel(FrameSetup f, const RayState* payload, uint32_t* image,
                               uint32_t* passCounters) {
+  BlockTimer timer(TaskKind::Resolve);
   int pixel = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   if (pixel >= f.pixelCount()) return;
   bool unfinished = false;

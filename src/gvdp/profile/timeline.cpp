@@ -1,0 +1,60 @@
+#include <atomic>
+
+#include "gvdp/base/parallel.h"
+#include "gvdp/profile/frame_timeline.h"
+#include "gvdp/profile/timeline_cpu.h"
+
+namespace gvdp {
+
+const char* taskKindName(TaskKind k) {
+  static const char* const NAMES[TASK_KIND_COUNT] = {"render", "production", "resolve", "cache",
+                                                     "sweep"};
+  return NAMES[static_cast<int>(k)];
+}
+
+namespace {
+std::atomic<CpuTimeline*> current{nullptr};
+
+void observe(uint8_t kind, int worker, uint64_t start, uint64_t end) {
+  if (CpuTimeline* t = current.load())
+    t->view().push({start, end, static_cast<uint16_t>(worker), static_cast<uint16_t>(worker),
+                    static_cast<TaskKind>(kind)});
+}
+}  // namespace
+
+void recordThreadPoolInto(CpuTimeline* timeline) {
+  current = timeline;
+  setTaskObserver(timeline ? observe : nullptr);
+}
+
+}  // namespace gvdp
+
+namespace gvdp {
+namespace {
+
+class CpuFrameTimeline final : public FrameTimeline {
+ public:
+  CpuFrameTimeline() : timeline_(TIMELINE_CAPACITY) {}
+  void begin() override {
+    timeline_.begin();
+    recordThreadPoolInto(&timeline_);
+  }
+  TimelineCapture end() override {
+    recordThreadPoolInto(nullptr);
+    TimelineCapture c;
+    c.records = timeline_.end(&c.overflow);
+    c.lanes = ThreadPool::global().size();
+    return c;
+  }
+
+ private:
+  CpuTimeline timeline_;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameTimeline> makeCpuFrameTimeline() {
+  return std::make_unique<CpuFrameTimeline>();
+}
+
+}  // namespace gvdp

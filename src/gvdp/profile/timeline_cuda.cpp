@@ -1,0 +1,33 @@
+#include "gvdp/profile/timeline_cuda.h"
+#include "gvdp/profile/frame_timeline.h"
+
+namespace gvdp {
+namespace {
+
+class GpuFrameTimeline final : public FrameTimeline {
+ public:
+  GpuFrameTimeline() : timeline_(TIMELINE_CAPACITY) {
+    int device = 0;
+    GVDP_CUDA_CHECK(cudaGetDevice(&device));
+    GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&lanes_, cudaDevAttrMultiProcessorCount, device));
+  }
+  void begin() override { timeline_.begin(); }
+  TimelineCapture end() override {
+    TimelineCapture c;
+    c.records = timeline_.end(&c.overflow);
+    c.lanes = lanes_;
+    return c;
+  }
+
+ private:
+  GpuTimeline timeline_;
+  int lanes_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameTimeline> makeGpuFrameTimeline() {
+  return std::make_unique<GpuFrameTimeline>();
+}
+
+}  // namespace gvdp

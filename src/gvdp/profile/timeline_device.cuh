@@ -1,0 +1,62 @@
+// Block-level instrumentation of CUDA kernels: put `BlockTimer timer(TaskKind::X);` first in a
+// kernel. Every thread takes part (start = atomicMin of %globaltimer over the block's threads,
+// end = atomicMax); the last thread to leave writes the record, so kernels may return early.
+// Free when profiling is off: one load and a uniform branch per thread.
+#pragma once
+
+#include "gvdp/profile/timeline.h"
+
+namespace gvdp {
+
+extern __device__ TimelineView deviceTimeline;  // defined in timeline.cu (relocatable device code)
+
+__device__ inline uint64_t globalTimer() {
+  uint64_t t;
+  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
+  return t;
+}
+
+__device__ inline uint32_t smId() {
+  uint32_t id;
+  asm volatile("mov.u32 %0, %%smid;" : "=r"(id));
+  return id;
+}
+
+class BlockTimer {
+ public:
+  __device__ explicit BlockTimer(TaskKind kind) : on_(deviceTimeline.enabled()), kind_(kind) {
+    if (!on_) return;
+    __shared__ Span span;
+    span_ = &span;
+    if (threadIdx.x + threadIdx.y + threadIdx.z == 0) {
+      span.start = ~0ull;
+      span.end = 0;
+      span.left = 0;
+      span.sm = smId();
+    }
+    __syncthreads();
+    atomicMin(&span.start, static_cast<unsigned long long>(globalTimer()));
+  }
+  __device__ ~BlockTimer() {
+    if (!on_) return;
+    atomicMax(&span_->end, static_cast<unsigned long long>(globalTimer()));
+    __threadfence_block();
+    unsigned threads = blockDim.x * blockDim.y * blockDim.z;
+    if (atomicAdd(&span_->left, 1u) + 1 == threads) {
+      __threadfence_block();
+      deviceTimeline.push({span_->start, span_->end, static_cast<uint16_t>(span_->sm),
+                           static_cast<uint16_t>(smId()), kind_});
+    }
+  }
+
+ private:
+  struct Span {
+    unsigned long long start, end;
+    unsigned left, sm;
+  };
+  bool on_;
+  TaskKind kind_;
+  Span* span_ = nullptr;
+};
+
+}  // namespace gvdp
