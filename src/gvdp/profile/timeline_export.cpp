@@ -98,10 +98,19 @@ TimelineStats timelineStats(const std::vector<TimelineRecord>& records, int lane
   }
   for (double& f : s.busyFraction) f /= span * lanes;
   s.idleFraction = span > 0 ? 1.0 - busy / (span * lanes) : 0.0;
-  // Tail: sweep the per-lane busy unions backwards from the end.
+  // Tail: from the scheduling work (render, production, sweep; not the final resolve nor the
+  // cache upkeep, which run full-width by construction), the time at its end during which
+  // fewer than half the lanes are busy.
+  std::vector<std::vector<Interval>> work(lanes);
+  uint64_t workEnd = t0;
+  for (const TimelineRecord& r : records) {
+    if (r.kind == TaskKind::Resolve || r.kind == TaskKind::Cache) continue;
+    work[std::min<int>(r.smStart, lanes - 1)].push_back({r.start, r.end});
+    workEnd = std::max(workEnd, r.end);
+  }
   std::vector<std::pair<uint64_t, int>> events;
   for (int l = 0; l < lanes; ++l) {
-    std::vector<Interval> v = all[l];
+    std::vector<Interval> v = work[l];
     std::sort(v.begin(), v.end(), [](const Interval& x, const Interval& y) { return x.a < y.a; });
     uint64_t a = 0, b = 0;
     bool open = false;
@@ -122,7 +131,7 @@ TimelineStats timelineStats(const std::vector<TimelineRecord>& records, int lane
     if (active * 2 >= lanes) lastHalfBusy = t;  // busy enough up to this event
     active += d;
   }
-  s.tailMs = static_cast<double>(t1 - lastHalfBusy) * 1e-6;
+  s.tailMs = static_cast<double>(workEnd - lastHalfBusy) * 1e-6;
   return s;
 }
 

@@ -16,7 +16,8 @@ struct TimelineStats {
   double spanMs = 0;                       // first start to last end
   double busyFraction[TASK_KIND_COUNT]{};  // of lanes x span, per kind (union per lane)
   double idleFraction = 0;                 // lanes x span not covered by any task
-  double tailMs = 0;  // at the end of the frame, the time fewer than half the lanes are busy
+  double tailMs = 0;  // at the end of the render/production work, the time fewer than half the
+                      // lanes are busy (the full-width resolve and cache upkeep excluded)
   int lanes = 0;
   size_t records = 0;
 };
