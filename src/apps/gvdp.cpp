@@ -12,6 +12,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
 #include "gvdp/base/parallel.h"
+#include "gvdp/bench/bench.h"
 #include "gvdp/bench/sequence.h"
 #include "gvdp/io/stats.h"
 #include "gvdp/profile/timeline_export.h"
@@ -198,6 +199,77 @@ int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
   return 0;
 }
 
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(s);
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct BenchFlags {
+  std::string scenes = "perlin,fbm,forest,random-spheres,aligned-spheres";
+  std::string movements = "walkthrough,forward,backward,sideways,spinning";
+  std::string schedulers = "sp,dp", backend = "auto", out = "results.json", csv, markdown;
+  int frames = UNSET, warmup = UNSET, width = UNSET, height = UNSET;
+  int64_t poolBricks = UNSET;
+  bool scale = false;
+};
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
+}
+
+int runBenchCommand(const BenchFlags& f) {
+  BenchOptions o;
+  bool gpu = f.backend == "auto" ? cudaDeviceAvailable() : parseBackend(f.backend) == Backend::Cuda;
+  o.backend = gpu ? Backend::Cuda : Backend::Cpu;
+  for (const std::string& s : splitList(f.scenes))
+    o.scenes.push_back(std::string(findScene(s).name));
+  for (const std::string& m : splitList(f.movements)) o.movements.push_back(parseMovement(m));
+  for (const std::string& k : splitList(f.schedulers)) {
+    SchedulerKind kind = parseScheduler(k);
+    GVDP_INPUT_CHECK(kind != SchedulerKind::Direct, "bad --schedulers '", k,
+                     "' (direct has no cache to benchmark; use sp, dp)");
+    o.schedulers.push_back(kind);
+  }
+  GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),
+                   "empty --scenes, --movements or --schedulers");
+  o.width = f.width != UNSET ? f.width : (gpu ? 1500 : 160);
+  o.height = f.height != UNSET ? f.height : (gpu ? 1000 : 100);
+  o.frames = f.frames != UNSET ? f.frames : (gpu ? 32 : 6);
+  o.warmup = f.warmup != UNSET ? f.warmup : (gpu ? 6 : 2);
+  GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 100000, "bad --frames ", o.frames);
+  GVDP_INPUT_CHECK(o.warmup >= 0 && o.warmup <= 100000, "bad --warmup ", o.warmup);
+  if (f.poolBricks != UNSET) {
+    GVDP_INPUT_CHECK(f.poolBricks >= 1 && f.poolBricks <= 50000000, "bad --pool-bricks ",
+                     f.poolBricks);
+    o.poolBricks = static_cast<uint32_t>(f.poolBricks);
+  }
+  o.scale = f.scale;
+  SequenceOptions check;
+  check.width = o.width;
+  check.height = o.height;
+  validate(check);
+  // Fail on an unwritable output before the long run, not after.
+  writeText(f.out, "");
+  BenchResults r = runBench(o, [](int done, int total, const std::string& line) {
+    int bar = total ? 30 * done / total : 30;
+    std::fprintf(stderr, "\r[%-30s] %d/%d %s\x1b[K", std::string(bar, '#').c_str(), done, total,
+                 line.c_str());
+    if (done == total) std::fprintf(stderr, "\n");
+  });
+  writeText(f.out, benchJson(r));
+  if (!f.csv.empty()) writeText(f.csv, benchCsv(r));
+  if (!f.markdown.empty()) writeText(f.markdown, benchMarkdown(r));
+  std::printf("%s", benchMarkdown(r).c_str());
+  std::printf("wrote %s\n", f.out.c_str());
+  return 0;
+}
+
 int runScenes() {
   for (const SceneInfo& s : allScenes())
     std::printf("%-16s %s\n%16s voxel size %.4g, start (%.1f, %.1f, %.1f), %.2f units/frame\n",
@@ -232,13 +304,32 @@ int run(int argc, char** argv) {
                           "the frame to record (frames before it warm up)");
   timelineCmd->add_option("--out", timelinePng, "timeline picture (default timeline.png)");
   timelineCmd->add_option("--trace", timelineTrace, "Chrome trace-event JSON (Perfetto)");
+  BenchFlags bench;
+  CLI::App* benchCmd =
+      app.add_subcommand("bench", "the paper's Table 1: scenes x movements x schedulers");
+  benchCmd->add_option("--scenes", bench.scenes, "comma-separated (default: all five)");
+  benchCmd->add_option("--movements", bench.movements, "comma-separated (default: all five)");
+  benchCmd->add_option("--schedulers", bench.schedulers, "comma-separated (default: sp,dp)");
+  benchCmd->add_option("--backend", bench.backend, "cpu, cuda or auto");
+  benchCmd->add_option("--frames", bench.frames, "measured frames per cell (GPU 32, CPU 6)");
+  benchCmd->add_option("--warmup", bench.warmup, "frames before measuring (GPU 6, CPU 2)");
+  benchCmd->add_option("--width", bench.width, "image width (GPU 1500, CPU 160)");
+  benchCmd->add_option("--height", bench.height, "image height (GPU 1000, CPU 100)");
+  benchCmd->add_option("--pool-bricks", bench.poolBricks, "brick pool slots");
+  benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");
+  benchCmd->add_option("--out", bench.out, "results JSON (default results.json)");
+  benchCmd->add_option("--csv", bench.csv, "also a CSV file");
+  benchCmd->add_option("--markdown", bench.markdown, "also a Markdown table in Table 1's shape");
   CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes");
   CLI::App* infoCmd = app.add_subcommand("info", "build, devices and defaults");
   if (argc > 1 && argv[1][0] != '-') {
-    std::string command = argv[1];
-    GVDP_INPUT_CHECK(
-        command == "render" || command == "timeline" || command == "scenes" || command == "info",
-        "unknown command '", command, "' (commands: render, timeline, scenes, info)");
+    std::string command = argv[1], names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      known = known || sub->get_name() == command;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    GVDP_INPUT_CHECK(known, "unknown command '", command, "' (commands: ", names, ")");
   }
   try {
     app.parse(argc, argv);
@@ -252,6 +343,7 @@ int run(int argc, char** argv) {
   if (renderCmd->parsed()) return runRender(render);
   if (timelineCmd->parsed())
     return runTimeline(timeline, timelineFrame, timelinePng, timelineTrace);
+  if (benchCmd->parsed()) return runBenchCommand(bench);
   if (scenesCmd->parsed()) return runScenes();
   if (infoCmd->parsed()) return runInfo();
   return 2;

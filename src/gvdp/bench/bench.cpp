@@ -1,0 +1,179 @@
+#include "gvdp/bench/bench.h"
+
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "gvdp/base/gpu.h"
+#include "gvdp/bench/frame_stats.h"
+
+namespace gvdp {
+namespace {
+
+BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
+  SequenceOptions s;
+  s.scene = scene;
+  s.movement = m;
+  s.width = o.width;
+  s.height = o.height;
+  s.frames = o.warmup + o.frames;
+  s.scheduler = {o.backend, k, o.poolBricks};
+  validate(s);
+  std::unique_ptr<Scheduler> scheduler = makeScheduler(s.scheduler);
+  Image image;
+  BenchCell c{};
+  c.scene = scene;
+  c.movement = std::string(movementName(m));
+  c.scheduler = std::string(schedulerName(k));
+  uint64_t bricks = 0;
+  for (int f = 0; f < s.frames; ++f) {
+    FrameStats st = scheduler->render(frameOf(s, f), image);
+    if (f < o.warmup) continue;
+    c.frameMs.push_back(st.ms);
+    bricks += st.cache.produced;
+    c.unfinishedPixels += st.unfinishedPixels;
+  }
+  // The floor: the first measured frames again, from the cache the path has filled.
+  std::vector<double> floor;
+  for (int f = o.warmup; f < o.warmup + std::min(o.floorFrames, o.frames); ++f)
+    floor.push_back(scheduler->render(frameOf(s, f), image).ms);
+  FrameTimeStats t = frameTimeStats(c.frameMs);
+  c.avgFps = t.avgFps;
+  c.low1Fps = t.low1Fps;
+  c.medianMs = t.medianMs;
+  c.p99Ms = t.p99Ms;
+  c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
+  c.floorMs = frameTimeStats(floor).medianMs;
+  for (const MemoryItem& item : scheduler->memory()) c.memoryBytes += item.bytes;
+  return c;
+}
+
+}  // namespace
+
+BenchResults runBench(const BenchOptions& o,
+                      const std::function<void(int, int, const std::string&)>& progress) {
+  BenchResults r;
+  r.device = o.backend == Backend::Cuda ? cudaDeviceSummary() : "cpu";
+  r.backend = std::string(backendName(o.backend));
+  r.width = o.width;
+  r.height = o.height;
+  r.frames = o.frames;
+  r.warmup = o.warmup;
+  int total = static_cast<int>(o.scenes.size() * o.movements.size() * o.schedulers.size());
+  int done = 0;
+  for (const std::string& scene : o.scenes)
+    for (Movement m : o.movements)
+      for (SchedulerKind k : o.schedulers) {
+        r.cells.push_back(runCell(o, scene, m, k));
+        const BenchCell& c = r.cells.back();
+        char line[256];
+        std::snprintf(line, sizeof line, "%s %s %s: %.1f FPS (1%% low %.1f), %.0f bricks/frame",
+                      c.scene.c_str(), c.movement.c_str(), c.scheduler.c_str(), c.avgFps, c.low1Fps,
+                      c.bricksPerFrame);
+        progress(++done, total, line);
+      }
+  // Speed-up against sp in the same (scene, movement).
+  for (BenchCell& c : r.cells)
+    for (const BenchCell& sp : r.cells)
+      if (sp.scheduler == "sp" && sp.scene == c.scene && sp.movement == c.movement)
+        c.speedupVsSp = c.avgFps / sp.avgFps;
+  if (o.scale && !o.scenes.empty()) {
+    const int SIZES[4][2] = {{1280, 720}, {1500, 1000}, {1920, 1080}, {3840, 2160}};
+    for (const auto& wh : SIZES) {
+      BenchOptions so = o;
+      so.width = wh[0];
+      so.height = wh[1];
+      BenchCell c = runCell(so, o.scenes[0], Movement::Walkthrough, SchedulerKind::Dp);
+      r.scale.push_back({wh[0], wh[1], c.medianMs, c.avgFps});
+      progress(done, total, "scale " + std::to_string(wh[0]) + "x" + std::to_string(wh[1]));
+    }
+  }
+  return r;
+}
+
+std::string benchJson(const BenchResults& r) {
+  nlohmann::json cells = nlohmann::json::array();
+  for (const BenchCell& c : r.cells)
+    cells.push_back({{"scene", c.scene},
+                     {"movement", c.movement},
+                     {"scheduler", c.scheduler},
+                     {"avg_fps", c.avgFps},
+                     {"low1_fps", c.low1Fps},
+                     {"median_ms", c.medianMs},
+                     {"p99_ms", c.p99Ms},
+                     {"bricks_per_frame", c.bricksPerFrame},
+                     {"unfinished_pixels", c.unfinishedPixels},
+                     {"speedup_vs_sp", c.speedupVsSp},
+                     {"floor_ms", c.floorMs},
+                     {"memory_bytes", c.memoryBytes},
+                     {"frame_ms", c.frameMs}});
+  nlohmann::json scale = nlohmann::json::array();
+  for (const BenchScalePoint& p : r.scale)
+    scale.push_back({{"width", p.width},
+                     {"height", p.height},
+                     {"median_ms", p.medianMs},
+                     {"avg_fps", p.avgFps}});
+  return nlohmann::json{{"device", r.device}, {"backend", r.backend}, {"width", r.width},
+                        {"height", r.height}, {"frames", r.frames},   {"warmup", r.warmup},
+                        {"cells", cells},     {"scale", scale}}
+      .dump(1);
+}
+
+std::string benchCsv(const BenchResults& r) {
+  std::ostringstream s;
+  s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
+       "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes\n";
+  for (const BenchCell& c : r.cells)
+    s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
+      << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
+      << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << '\n';
+  return s.str();
+}
+
+std::string benchMarkdown(const BenchResults& r) {
+  // Rows: movements; column groups: scenes, each scheduler's average FPS then SU (vs sp).
+  std::vector<std::string> scenes, movements, schedulers;
+  auto add = [](std::vector<std::string>& v, const std::string& x) {
+    if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+  };
+  std::map<std::string, const BenchCell*> at;
+  for (const BenchCell& c : r.cells) {
+    add(scenes, c.scene);
+    add(movements, c.movement);
+    add(schedulers, c.scheduler);
+    at[c.scene + "/" + c.movement + "/" + c.scheduler] = &c;
+  }
+  std::vector<std::string> others;
+  for (const std::string& k : schedulers)
+    if (k != "sp") others.push_back(k);
+  std::ostringstream s;
+  s << "| movement |";
+  for (const std::string& sc : scenes) {
+    for (const std::string& k : schedulers) s << ' ' << sc << ' ' << k << " |";
+    for (const std::string& k : others) s << ' ' << sc << " SU " << k << " |";
+  }
+  s << "\n|---|";
+  for (size_t i = 0; i < scenes.size() * (schedulers.size() + others.size()); ++i) s << "---|";
+  s << '\n';
+  char buf[32];
+  for (const std::string& m : movements) {
+    s << "| " << m << " |";
+    for (const std::string& sc : scenes) {
+      for (const std::string& k : schedulers) {
+        const BenchCell* c = at[sc + "/" + m + "/" + k];
+        std::snprintf(buf, sizeof buf, " %.1f |", c ? c->avgFps : 0.0);
+        s << buf;
+      }
+      for (const std::string& k : others) {
+        const BenchCell* c = at[sc + "/" + m + "/" + k];
+        std::snprintf(buf, sizeof buf, " %.2f |", c ? c->speedupVsSp : 0.0);
+        s << buf;
+      }
+    }
+    s << '\n';
+  }
+  return s.str();
+}
+
+}  // namespace gvdp

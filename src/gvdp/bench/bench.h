@@ -1,0 +1,53 @@
+// The Table-1 runner (paper 4.1-4.2): every (scene x movement x scheduler) cell renders a
+// warm-up, then the measured frames along the path; then the same frames again from the warm
+// cache (the render-only floor: almost nothing left to produce). Speed-ups are against sp.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gvdp/bench/sequence.h"
+
+namespace gvdp {
+
+struct BenchOptions {
+  std::vector<std::string> scenes;
+  std::vector<Movement> movements;
+  std::vector<SchedulerKind> schedulers;
+  Backend backend = Backend::Cpu;
+  int width = 1500, height = 1000;
+  int frames = 32, warmup = 6, floorFrames = 8;
+  uint32_t poolBricks = 0;
+  bool scale = false;  // frame time against resolution for dp on the first scene
+};
+
+struct BenchCell {
+  std::string scene, movement, scheduler;
+  double avgFps, low1Fps, medianMs, p99Ms, bricksPerFrame, floorMs, speedupVsSp = 0;
+  int64_t unfinishedPixels;
+  uint64_t memoryBytes;
+  std::vector<double> frameMs;
+};
+
+struct BenchScalePoint {
+  int width, height;
+  double medianMs, avgFps;
+};
+
+struct BenchResults {
+  std::string device, backend;
+  int width, height, frames, warmup;
+  std::vector<BenchCell> cells;
+  std::vector<BenchScalePoint> scale;
+};
+
+// progress(done, total, line) after every cell.
+BenchResults runBench(const BenchOptions& o,
+                      const std::function<void(int, int, const std::string&)>& progress);
+
+std::string benchJson(const BenchResults& r);
+std::string benchCsv(const BenchResults& r);
+std::string benchMarkdown(const BenchResults& r);  // Table 1's shape
+
+}  // namespace gvdp

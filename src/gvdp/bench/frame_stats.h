@@ -1,0 +1,31 @@
+// Statistics of a run's frame times, as the paper reports them (4.2): average FPS, 1% low FPS
+// (the mean of the slowest 1% of frames, at least one frame), median and 99th percentile.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace gvdp {
+
+struct FrameTimeStats {
+  double avgFps = 0, low1Fps = 0, medianMs = 0, p99Ms = 0;
+};
+
+inline FrameTimeStats frameTimeStats(std::vector<double> ms) {
+  FrameTimeStats s;
+  if (ms.empty()) return s;
+  std::sort(ms.begin(), ms.end());
+  size_t n = ms.size();
+  double total = std::accumulate(ms.begin(), ms.end(), 0.0);
+  s.avgFps = 1000.0 * static_cast<double>(n) / total;
+  size_t slow = std::max<size_t>(1, n / 100);
+  s.low1Fps = 1000.0 * static_cast<double>(slow) / std::accumulate(ms.end() - slow, ms.end(), 0.0);
+  s.medianMs = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+  // Nearest-rank percentile.
+  s.p99Ms = ms[std::min(n - 1, static_cast<size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1)];
+  return s;
+}
+
+}  // namespace gvdp

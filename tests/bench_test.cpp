@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "gvdp/bench/bench.h"
+#include "gvdp/bench/frame_stats.h"
+#include "test_util.h"
+
+namespace gvdp {
+
+TEST(FrameStats, OnePercentLowAndPercentilesOnSyntheticTimes) {
+  // 200 frames: 198 at 10 ms, two at 50 ms. 1% of 200 = the 2 slowest.
+  std::vector<double> ms(198, 10.0);
+  ms.push_back(50.0);
+  ms.push_back(50.0);
+  FrameTimeStats s = frameTimeStats(ms);
+  EXPECT_DOUBLE_EQ(s.avgFps, 1000.0 * 200 / (198 * 10.0 + 100.0));
+  EXPECT_DOUBLE_EQ(s.low1Fps, 20.0);  // mean of the slowest 1%: 50 ms
+  EXPECT_DOUBLE_EQ(s.medianMs, 10.0);
+  EXPECT_DOUBLE_EQ(s.p99Ms, 10.0);  // nearest rank: the 198th of 200 sorted values
+  ms[0] = 50.0;                     // now the 198th is a slow one
+  EXPECT_DOUBLE_EQ(frameTimeStats(ms).p99Ms, 50.0);
+  // Fewer than 100 frames: the 1% low is the slowest frame.
+  FrameTimeStats few = frameTimeStats({4.0, 8.0, 5.0});
+  EXPECT_DOUBLE_EQ(few.low1Fps, 125.0);
+  EXPECT_DOUBLE_EQ(few.medianMs, 5.0);
+}
+
+TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
+  BenchOptions o;
+  o.scenes = {"aligned-spheres"};
+  o.movements = {Movement::Walkthrough, Movement::Sideways};
+  o.schedulers = {SchedulerKind::Sp, SchedulerKind::Dp};
+  o.width = 32;
+  o.height = 20;
+  o.frames = 2;
+  o.warmup = 1;
+  int calls = 0;
+  BenchResults r = runBench(o, [&](int done, int total, const std::string&) {
+    ++calls;
+    EXPECT_LE(done, total);
+  });
+  EXPECT_EQ(calls, 4);
+  nlohmann::json j = nlohmann::json::parse(benchJson(r));
+  for (const char* key : {"device", "backend", "width", "height", "frames", "cells"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  ASSERT_EQ(j["cells"].size(), 4u);
+  for (const auto& c : j["cells"]) {
+    for (const char* key : {"scene", "movement", "scheduler", "avg_fps", "low1_fps", "median_ms",
+                            "p99_ms", "bricks_per_frame", "unfinished_pixels", "speedup_vs_sp"})
+      EXPECT_TRUE(c.contains(key)) << key;
+    EXPECT_EQ(c["unfinished_pixels"], 0);
+    EXPECT_GT(c["avg_fps"].get<double>(), 0.0);
+    EXPECT_EQ(c["frame_ms"].size(), 2u);
+    if (c["scheduler"] == "sp") {
+      EXPECT_DOUBLE_EQ(c["speedup_vs_sp"].get<double>(), 1.0);
+    }
+  }
+  std::string md = benchMarkdown(r);
+  EXPECT_NE(md.find("| walkthrough |"), std::string::npos);
+  EXPECT_NE(md.find("aligned-spheres SU dp"), std::string::npos);
+  EXPECT_NE(benchCsv(r).find("aligned-spheres,sideways,dp,"), std::string::npos);
+}
+
+TEST(Bench, CommandWritesItsOutputsAndRejectsBadLists) {
+  std::string dir = test::tempDir("bench");
+  std::filesystem::create_directories(dir);
+  test::CommandResult r = test::runGvdp(
+      "bench --backend cpu --scenes perlin --movements spinning --schedulers sp --frames 1 "
+      "--warmup 0 --width 32 --height 20 --out " +
+      dir + "/r.json --markdown " + dir + "/r.md");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(dir + "/r.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["cells"].size(), 1u);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/r.md"));
+  EXPECT_EQ(test::runGvdp("bench --backend cpu --scenes moon --out " + dir + "/x.json").status, 2);
+  EXPECT_EQ(
+      test::runGvdp("bench --backend cpu --schedulers direct --out " + dir + "/x.json").status, 2);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace gvdp
