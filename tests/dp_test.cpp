@@ -6,31 +6,9 @@
 
 namespace gvdp {
 
-namespace {
-struct Renders {
-  std::vector<Image> images;
-  std::vector<FrameStats> stats;
-};
-
-Renders renderRun(const std::string& scene, SchedulerOptions s, int frames, int w, int h) {
-  SequenceOptions o;
-  o.scene = scene;
-  o.frames = frames;
-  o.width = w;
-  o.height = h;
-  o.scheduler = s;
-  Renders r;
-  renderSequence(o, [&](const Image& im, const FrameStats& st) {
-    r.images.push_back(im);
-    r.stats.push_back(st);
-  });
-  return r;
-}
-
-std::string sceneName(int i) {
-  return std::string(allScenes()[i].name);
-}
-}  // namespace
+using test::renderRun;
+using test::Renders;
+using test::sceneName;
 
 class DpCpuTest : public ::testing::TestWithParam<int> {};
 

@@ -5,27 +5,12 @@
 
 namespace gvdp {
 
-namespace {
-struct Renders {
-  std::vector<Image> images;
-  std::vector<FrameStats> stats;
-};
+using test::Renders;
 
+namespace {
 Renders renderRun(const std::string& scene, SchedulerKind kind, Backend backend, int frames, int w,
                   int h, uint32_t poolBricks = 0, Movement movement = Movement::Walkthrough) {
-  SequenceOptions o;
-  o.scene = scene;
-  o.frames = frames;
-  o.width = w;
-  o.height = h;
-  o.movement = movement;
-  o.scheduler = {backend, kind, poolBricks};
-  Renders r;
-  renderSequence(o, [&](const Image& im, const FrameStats& s) {
-    r.images.push_back(im);
-    r.stats.push_back(s);
-  });
-  return r;
+  return test::renderRun(scene, {backend, kind, poolBricks}, frames, w, h, movement);
 }
 }  // namespace
 

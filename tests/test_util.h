@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gvdp/base/gpu.h"
+#include "gvdp/bench/sequence.h"
 
 namespace gvdp::test {
 
@@ -35,6 +36,33 @@ inline CommandResult runGvdp(const std::string& args) {
 
 inline std::string tempDir(const std::string& name) {
   return ::testing::TempDir() + "gvdp_" + name + "_" + std::to_string(::getpid());
+}
+
+// Every frame of a sequence, images and stats.
+struct Renders {
+  std::vector<Image> images;
+  std::vector<FrameStats> stats;
+};
+
+inline Renders renderRun(const std::string& scene, SchedulerOptions s, int frames, int w, int h,
+                         Movement movement = Movement::Walkthrough) {
+  SequenceOptions o;
+  o.scene = scene;
+  o.frames = frames;
+  o.width = w;
+  o.height = h;
+  o.movement = movement;
+  o.scheduler = s;
+  Renders r;
+  renderSequence(o, [&](const Image& im, const FrameStats& st) {
+    r.images.push_back(im);
+    r.stats.push_back(st);
+  });
+  return r;
+}
+
+inline std::string sceneName(int i) {
+  return std::string(allScenes()[i].name);
 }
 
 }  // namespace gvdp::test
