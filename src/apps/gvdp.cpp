@@ -3,6 +3,7 @@
 // exit status: 2 for bad input, 1 for internal failures.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "gvdp/bench/sequence.h"
 #include "gvdp/io/stats.h"
 #include "gvdp/profile/timeline_export.h"
+#include "gvdp/render/march.h"
 
 namespace gvdp {
 namespace {
@@ -279,12 +281,39 @@ int runScenes() {
   return 0;
 }
 
+// Bytes of every structure for a configuration, computed as the caches allocate them.
+void printMemory(const char* label, int width, int height, uint32_t poolBricks) {
+  float pixelAngle = 2.0f * std::tan(0.5f * DEFAULT_FOV_DEGREES * PI / 180.0f) / width;
+  size_t w = static_cast<size_t>(clipmapWidthFor(pixelAngle));
+  size_t pixels = static_cast<size_t>(width) * height, k = poolBricks;
+  MemoryReport m = {{"brick_pool", k * BRICK_SAMPLE_COUNT * sizeof(Rgba8)},
+                    {"indirection_table", DEFAULT_LEVELS * w * w * w * sizeof(uint32_t)},
+                    {"inverse_table", k * sizeof(BrickKey)},
+                    {"timestamps", k * sizeof(uint32_t)},
+                    {"free_slot_list_and_lru_sort", k * 4 * sizeof(uint32_t)},
+                    {"request_queue", pixels * sizeof(BrickKey)},
+                    {"ray_payload", pixels * sizeof(RayState)},
+                    {"live_ray_lists_and_image", pixels * 3 * sizeof(uint32_t)},
+                    {"dp_ray_locks", pixels * sizeof(uint32_t)}};
+  size_t total = 0;
+  std::printf("memory at %s (%dx%d, clipmap %zu^3 x %d levels, pool %u bricks):\n", label, width,
+              height, w, DEFAULT_LEVELS, poolBricks);
+  for (const MemoryItem& i : m) {
+    std::printf("  %-28s %10.1f MB\n", i.name.c_str(), static_cast<double>(i.bytes) / 1e6);
+    total += i.bytes;
+  }
+  std::printf("  %-28s %10.1f MB (dp adds CUDA's pending-launch buffer, reported by render)\n",
+              "total", static_cast<double>(total) / 1e6);
+}
+
 int runInfo() {
   std::printf("gvdp %s\n", GVDP_VERSION);
   std::printf("cuda backend: %s\n", cudaBuilt() ? "built (sm_" GVDP_CUDA_ARCHS ")" : "not built");
   std::printf("devices: %s\n", cudaDeviceSummary().c_str());
   std::printf("cpu threads: %d\n", ThreadPool::global().size());
   std::printf("scenes: %s\nmovements: %s\n", sceneNames().c_str(), movementNames().c_str());
+  printMemory("the GPU defaults", 1500, 1000, DEFAULT_POOL_BRICKS_CUDA);
+  printMemory("the CPU defaults", 160, 100, DEFAULT_POOL_BRICKS_CPU);
   return 0;
 }
 

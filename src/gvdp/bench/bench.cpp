@@ -1,5 +1,6 @@
 #include "gvdp/bench/bench.h"
 
+#include <chrono>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -28,9 +29,13 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.scheduler = std::string(schedulerName(k));
   uint64_t bricks = 0;
   for (int f = 0; f < s.frames; ++f) {
+    auto t0 = std::chrono::steady_clock::now();
     FrameStats st = scheduler->render(frameOf(s, f), image);
+    double wall =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (f < o.warmup) continue;
     c.frameMs.push_back(st.ms);
+    c.frameWallMs.push_back(wall);
     bricks += st.cache.produced;
     c.unfinishedPixels += st.unfinishedPixels;
   }
@@ -43,9 +48,11 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.low1Fps = t.low1Fps;
   c.medianMs = t.medianMs;
   c.p99Ms = t.p99Ms;
+  c.medianWallMs = frameTimeStats(c.frameWallMs).medianMs;
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
-  for (const MemoryItem& item : scheduler->memory()) c.memoryBytes += item.bytes;
+  c.memory = scheduler->memory();
+  for (const MemoryItem& item : c.memory) c.memoryBytes += item.bytes;
   return c;
 }
 
@@ -94,7 +101,9 @@ BenchResults runBench(const BenchOptions& o,
 
 std::string benchJson(const BenchResults& r) {
   nlohmann::json cells = nlohmann::json::array();
-  for (const BenchCell& c : r.cells)
+  for (const BenchCell& c : r.cells) {
+    nlohmann::json memory = nlohmann::json::object();
+    for (const MemoryItem& m : c.memory) memory[m.name] = m.bytes;
     cells.push_back({{"scene", c.scene},
                      {"movement", c.movement},
                      {"scheduler", c.scheduler},
@@ -106,8 +115,12 @@ std::string benchJson(const BenchResults& r) {
                      {"unfinished_pixels", c.unfinishedPixels},
                      {"speedup_vs_sp", c.speedupVsSp},
                      {"floor_ms", c.floorMs},
+                     {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
-                     {"frame_ms", c.frameMs}});
+                     {"memory", memory},
+                     {"frame_ms", c.frameMs},
+                     {"frame_wall_ms", c.frameWallMs}});
+  }
   nlohmann::json scale = nlohmann::json::array();
   for (const BenchScalePoint& p : r.scale)
     scale.push_back({{"width", p.width},

@@ -24,10 +24,12 @@ struct BenchOptions {
 
 struct BenchCell {
   std::string scene, movement, scheduler;
-  double avgFps, low1Fps, medianMs, p99Ms, bricksPerFrame, floorMs, speedupVsSp = 0;
+  double avgFps, low1Fps, medianMs, p99Ms, medianWallMs, bricksPerFrame, floorMs, speedupVsSp = 0;
   int64_t unfinishedPixels;
   uint64_t memoryBytes;
-  std::vector<double> frameMs;
+  std::vector<double> frameMs;      // CUDA events (GPU) or wall clock (CPU), per measured frame
+  std::vector<double> frameWallMs;  // host wall clock around each frame's render() call
+  MemoryReport memory;
 };
 
 struct BenchScalePoint {
