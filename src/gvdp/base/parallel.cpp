@@ -80,7 +80,11 @@ void ThreadPool::run(int64_t n, int64_t chunk,
                      const std::function<void(int64_t, int64_t, int)>& body, uint8_t kind) {
   if (n <= 0) return;
   {
-    std::lock_guard lock(mutex_);
+    // A worker that woke late for the previous run may still be inside drain() (finding no
+    // work): the shared state must not change under it, or it would pair the old chunk size
+    // with the new counter and run chunks twice or skip them.
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [&] { return active_ == 0; });
     body_ = &body;
     n_ = n;
     chunk_ = std::max<int64_t>(chunk, 1);

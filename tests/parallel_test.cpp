@@ -1,0 +1,26 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <vector>
+
+#include "gvdp/base/parallel.h"
+
+namespace gvdp {
+
+// Every index runs exactly once, across back-to-back runs with different chunk sizes: a worker
+// that wakes late for one run must not pair its chunk size with the next run's counter.
+TEST(ThreadPool, EveryIndexRunsExactlyOnceAcrossBackToBackRuns) {
+  ThreadPool pool(16);
+  std::vector<std::atomic<int>> hits(5000);
+  const int64_t CHUNKS[] = {64, 1, 7, 32, 3};
+  for (int run = 0; run < 3000; ++run) {
+    int64_t n = 1 + (run * 7919) % 5000;
+    for (int64_t i = 0; i < n; ++i) hits[i] = 0;
+    pool.run(n, CHUNKS[run % 5], [&](int64_t b, int64_t e, int) {
+      for (int64_t i = b; i < e; ++i) hits[i].fetch_add(1, std::memory_order_relaxed);
+    });
+    for (int64_t i = 0; i < n; ++i) ASSERT_EQ(hits[i].load(), 1) << "run " << run << " index " << i;
+  }
+}
+
+}  // namespace gvdp
