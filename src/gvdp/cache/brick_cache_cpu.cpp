@@ -96,16 +96,9 @@ CacheView BrickCacheCpu::view() {
 }
 
 CacheStats BrickCacheCpu::frameStats() const {
-  CacheStats s;
-  s.produced = counters_[COUNTER_PRODUCED];
-  s.empty = counters_[COUNTER_EMPTY];
-  s.failed = counters_[COUNTER_FAILED];
-  s.evicted = counters_[COUNTER_EVICTED];
-  s.requested = s.produced + s.empty + s.failed;
-  s.resident = static_cast<uint64_t>(std::count_if(
-      inverse_.begin(), inverse_.end(), [](const BrickKey& k) { return k.level != NO_LEVEL; }));
-  s.refills = refills_;
-  return s;
+  auto resident = std::count_if(inverse_.begin(), inverse_.end(),
+                                [](const BrickKey& k) { return k.level != NO_LEVEL; });
+  return cacheStatsFrom(counters_, static_cast<uint64_t>(resident), refills_);
 }
 
 MemoryReport BrickCacheCpu::memory() const {

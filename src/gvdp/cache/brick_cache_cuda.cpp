@@ -92,16 +92,8 @@ void BrickCacheCuda::clearRequests() {
 CacheStats BrickCacheCuda::frameStats() {
   uint32_t c[COUNTER_COUNT];
   readCounters(c);
-  CacheStats s;
-  s.produced = c[COUNTER_PRODUCED];
-  s.empty = c[COUNTER_EMPTY];
-  s.failed = c[COUNTER_FAILED];
-  s.evicted = c[COUNTER_EVICTED];
-  s.requested = s.produced + s.empty + s.failed;
-  resident_ = resident_ + s.produced - s.evicted;
-  s.resident = resident_;
-  s.refills = refills_;
-  return s;
+  resident_ = resident_ + c[COUNTER_PRODUCED] - c[COUNTER_EVICTED];
+  return cacheStatsFrom(c, resident_, refills_);
 }
 
 MemoryReport BrickCacheCuda::memory() const {

@@ -24,6 +24,19 @@ struct MemoryItem {
 };
 using MemoryReport = std::vector<MemoryItem>;
 
+// A frame's statistics from its counters (CacheCounter), on either backend.
+inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, uint32_t refills) {
+  CacheStats s;
+  s.produced = counters[COUNTER_PRODUCED];
+  s.empty = counters[COUNTER_EMPTY];
+  s.failed = counters[COUNTER_FAILED];
+  s.evicted = counters[COUNTER_EVICTED];
+  s.requested = s.produced + s.empty + s.failed;  // every request ends in one of the three
+  s.resident = resident;
+  s.refills = refills;
+  return s;
+}
+
 // Paper 3.3.4: a list of 10% of the pool (small pools may free every slot) ...
 inline uint32_t freeListCapacity(uint32_t poolBricks) {
   uint32_t tenth = poolBricks / 10;
