@@ -49,8 +49,9 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool withOut = true) {
   cmd->add_option("--height", f.height, "image height (default: 1000 on the GPU, 100 on the CPU)");
   cmd->add_option("--backend", f.backend, "cpu, cuda or auto (the GPU when there is one)");
   cmd->add_option("--scheduler", f.scheduler,
-                  "sp (GigaVoxels loop, default), dp (the paper: dynamic parallelism) or direct "
-                  "(no cache, the reference)");
+                  "sp (GigaVoxels loop, default), dp (the paper: dynamic parallelism), pt "
+                  "(persistent threads), graph (sp as one CUDA graph, cuda only) or direct (no "
+                  "cache, the reference)");
   cmd->add_option("--pending-launches", f.pendingLaunches,
                   "dp: CDP pending-launch buffer (task-queue capacity on the CPU), default 65536");
   cmd->add_option("--pool-bricks", f.poolBricks,
@@ -213,7 +214,7 @@ std::vector<std::string> splitList(const std::string& s) {
 struct BenchFlags {
   std::string scenes = "perlin,fbm,forest,random-spheres,aligned-spheres";
   std::string movements = "walkthrough,forward,backward,sideways,spinning";
-  std::string schedulers = "sp,dp", backend = "auto", out = "results.json", csv, markdown;
+  std::string schedulers = "sp,dp,pt", backend = "auto", out = "results.json", csv, markdown;
   int frames = UNSET, warmup = UNSET, width = UNSET, height = UNSET;
   int64_t poolBricks = UNSET;
   bool scale = false;
@@ -235,7 +236,7 @@ int runBenchCommand(const BenchFlags& f) {
   for (const std::string& k : splitList(f.schedulers)) {
     SchedulerKind kind = parseScheduler(k);
     GVDP_INPUT_CHECK(kind != SchedulerKind::Direct, "bad --schedulers '", k,
-                     "' (direct has no cache to benchmark; use sp, dp)");
+                     "' (direct has no cache to benchmark; use sp, dp, pt, graph)");
     o.schedulers.push_back(kind);
   }
   GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),
@@ -338,7 +339,8 @@ int run(int argc, char** argv) {
       app.add_subcommand("bench", "the paper's Table 1: scenes x movements x schedulers");
   benchCmd->add_option("--scenes", bench.scenes, "comma-separated (default: all five)");
   benchCmd->add_option("--movements", bench.movements, "comma-separated (default: all five)");
-  benchCmd->add_option("--schedulers", bench.schedulers, "comma-separated (default: sp,dp)");
+  benchCmd->add_option("--schedulers", bench.schedulers,
+                       "comma-separated (default: sp,dp,pt; graph: cuda only)");
   benchCmd->add_option("--backend", bench.backend, "cpu, cuda or auto");
   benchCmd->add_option("--frames", bench.frames, "measured frames per cell (GPU 32, CPU 6)");
   benchCmd->add_option("--warmup", bench.warmup, "frames before measuring (GPU 6, CPU 2)");

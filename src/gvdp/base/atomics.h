@@ -11,6 +11,7 @@
 
 #if !GVDP_IS_GPU_CODE
 #include <atomic>
+#include <thread>
 #endif
 
 namespace gvdp {
@@ -51,6 +52,25 @@ GVDP_HD GVDP_INLINE uint32_t loadAcquire32(const uint32_t* p) {
 #endif
 }
 
+GVDP_HD GVDP_INLINE uint64_t loadAcquire64(const uint64_t* p) {
+#if GVDP_IS_GPU_CODE
+  uint64_t v = *reinterpret_cast<const volatile uint64_t*>(p);
+  __threadfence();
+  return v;
+#else
+  return std::atomic_ref<uint64_t>(*const_cast<uint64_t*>(p)).load(std::memory_order_seq_cst);
+#endif
+}
+
+GVDP_HD GVDP_INLINE void storeRelease64(uint64_t* p, uint64_t v) {
+#if GVDP_IS_GPU_CODE
+  __threadfence();
+  *reinterpret_cast<volatile uint64_t*>(p) = v;
+#else
+  std::atomic_ref<uint64_t>(*p).store(v, std::memory_order_seq_cst);
+#endif
+}
+
 // Loads a word another thread may write concurrently, without ordering anything else.
 GVDP_HD GVDP_INLINE uint32_t loadRelaxed32(const uint32_t* p) {
 #if GVDP_IS_GPU_CODE
@@ -74,6 +94,15 @@ GVDP_HD GVDP_INLINE void storeRelaxed32(uint32_t* p, uint32_t v) {
   *reinterpret_cast<volatile uint32_t*>(p) = v;
 #else
   std::atomic_ref<uint32_t>(*p).store(v, std::memory_order_relaxed);
+#endif
+}
+
+// Backs off inside a spin-wait (the awaited store comes from another warp or thread).
+GVDP_HD GVDP_INLINE void spinPause() {
+#if GVDP_IS_GPU_CODE
+  __nanosleep(32);
+#else
+  std::this_thread::yield();
 #endif
 }
 

@@ -3,6 +3,8 @@
 #include "gvdp/base/error.h"
 #include "gvdp/sched/direct.h"
 #include "gvdp/sched/dp.h"
+#include "gvdp/sched/graph.h"
+#include "gvdp/sched/pt.h"
 #include "gvdp/sched/sp.h"
 
 namespace gvdp {
@@ -16,6 +18,14 @@ std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions&) {
 }
 
 std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions&) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions&) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions&) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

@@ -4,6 +4,8 @@
 #include "gvdp/base/gpu.h"
 #include "gvdp/sched/direct.h"
 #include "gvdp/sched/dp.h"
+#include "gvdp/sched/graph.h"
+#include "gvdp/sched/pt.h"
 #include "gvdp/sched/sp.h"
 
 namespace gvdp {
@@ -19,17 +21,19 @@ Backend parseBackend(std::string_view name) {
 }
 
 namespace {
-constexpr std::string_view SCHEDULER_NAMES[] = {"direct", "sp", "dp"};
-}
+constexpr std::string_view SCHEDULER_NAMES[] = {"direct", "sp", "dp", "pt", "graph"};
+constexpr int SCHEDULER_COUNT = 5;
+}  // namespace
 
 std::string_view schedulerName(SchedulerKind k) {
   return SCHEDULER_NAMES[static_cast<int>(k)];
 }
 
 SchedulerKind parseScheduler(std::string_view name) {
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < SCHEDULER_COUNT; ++k)
     if (SCHEDULER_NAMES[k] == name) return static_cast<SchedulerKind>(k);
-  throw InputError("unknown scheduler '" + std::string(name) + "' (schedulers: sp, dp, direct)");
+  throw InputError("unknown scheduler '" + std::string(name) +
+                   "' (schedulers: sp, dp, pt, graph, direct)");
 }
 
 namespace {
@@ -42,8 +46,12 @@ std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options) {
         return makeDirectCuda();
       case SchedulerKind::Sp:
         return makeSpCuda(options);
-      default:
+      case SchedulerKind::Dp:
         return makeDpCuda(options);
+      case SchedulerKind::Pt:
+        return makePtCuda(options);
+      case SchedulerKind::Graph:
+        return makeGraphCuda(options);
     }
   }
   switch (options.kind) {
@@ -51,9 +59,14 @@ std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options) {
       return makeDirectCpu();
     case SchedulerKind::Sp:
       return makeSpCpu(options);
-    default:
+    case SchedulerKind::Dp:
       return makeDpCpu(options);
+    case SchedulerKind::Pt:
+      return makePtCpu(options);
+    case SchedulerKind::Graph:
+      break;
   }
+  throw InputError("scheduler 'graph' runs on the cuda backend only (a CUDA graph of the sp loop)");
 }
 }  // namespace
 

@@ -16,7 +16,7 @@
 namespace gvdp {
 
 enum class Backend { Cpu, Cuda };
-enum class SchedulerKind { Direct, Sp, Dp };
+enum class SchedulerKind { Direct, Sp, Dp, Pt, Graph };
 
 std::string_view backendName(Backend b);
 Backend parseBackend(std::string_view name);  // "cpu" | "cuda"; throws InputError
@@ -29,8 +29,8 @@ struct FrameStats {
   int64_t unfinishedPixels = 0;
   int passes = 0;               // render passes (sp iterations)
   bool degraded = false;        // some bricks could not be produced: coarser levels stood in
-  uint64_t launches = 0;        // dp: device-side launches (productions + render relaunches)
-  uint64_t launchFailures = 0;  // dp: launches refused (pending-launch buffer full)
+  uint64_t launches = 0;        // dp: device-side launches; pt: tasks run (render + production)
+  uint64_t launchFailures = 0;  // dp: launches refused (pending-launch buffer full); pt: no id
   uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)
   int64_t sweptPixels = 0;      // dp: rays the device-side schedule left to the sp sweep
   CacheStats cache;

@@ -1,6 +1,7 @@
 // CUDA kernels of the sp scheduler: render passes (Algorithm 1 over the tiled screen, then over
 // the compacted list of stopped rays), production (Algorithm 2, one block per brick) and resolve.
 #include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/sched/compaction.cuh"
 #include "gvdp/sched/produce_block.cuh"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp_cuda.h"
@@ -9,18 +10,6 @@ namespace gvdp {
 namespace {
 
 constexpr int RENDER_BLOCK = 128;
-
-// Thread compaction (seed 004): the stopped rays of a warp are appended with one atomic, so the
-// next pass runs over full warps of live rays only. Every lane of the warp must call it.
-__device__ void appendStopped(bool stopped, uint32_t pixel, uint32_t* next, uint32_t* count) {
-  unsigned mask = __ballot_sync(0xffffffffu, stopped);
-  if (mask == 0) return;
-  int lane = threadIdx.x & 31, leader = __ffs(mask) - 1;
-  uint32_t base = 0;
-  if (lane == leader) base = atomicAdd(count, static_cast<uint32_t>(__popc(mask)));
-  base = __shfl_sync(0xffffffffu, base, leader);
-  if (stopped) next[base + __popc(mask & ((1u << lane) - 1u))] = pixel;
-}
 
 __global__ void __launch_bounds__(RENDER_BLOCK)
     firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,

@@ -1,0 +1,74 @@
+#include "gvdp/sched/graph_cuda.h"
+#include "gvdp/sched/graph.h"
+#include "gvdp/sched/sp.h"
+#include "gvdp/sched/sp_loop_cuda.h"
+
+namespace gvdp {
+namespace {
+
+class GraphCuda final : public Scheduler {
+ public:
+  explicit GraphCuda(const SchedulerOptions& o)
+      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
+        frame_(1),
+        loop_(1),
+        exec_(buildSpGraph(frame_.data(), loop_.data())) {}
+  ~GraphCuda() override { cudaGraphExecDestroy(exec_); }
+
+  FrameStats render(const FrameSetup& f, Image& out) override {
+    FrameStats stats;
+    stats.index = f.frameIndex;
+    buffers_.resize(static_cast<size_t>(f.pixelCount()));
+    timelineBegin();
+    NvtxRange range("graph frame");
+    timer_.start();
+    cache_.beginFrame(f);
+    GraphFrame g{f, cache_.view(), cache_.pool(), buffers_.payload.data()};
+    GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0};
+    GVDP_CUDA_CHECK(cudaMemcpyAsync(frame_.data(), &g, sizeof g, cudaMemcpyHostToDevice));
+    GVDP_CUDA_CHECK(cudaMemcpyAsync(loop_.data(), &loop, sizeof loop, cudaMemcpyHostToDevice));
+    GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, nullptr));
+    GVDP_CUDA_CHECK(cudaMemcpy(&loop, loop_.data(), sizeof loop, cudaMemcpyDeviceToHost));
+    stats.passes = static_cast<int>(loop.passes);
+    if (loop.exit != GRAPH_DONE) finishOnHost(f, loop, stats);
+    stats.unfinishedPixels = resolveCuda(f, buffers_);
+    timer_.stop();
+    stats.ms = timer_.ms();
+    timelineEnd(stats);
+    downloadImage(f, buffers_, out);
+    stats.degraded = cache_.degraded();
+    stats.cache = cache_.frameStats();
+    return stats;
+  }
+
+  MemoryReport memory() const override {
+    MemoryReport m = cache_.memory();
+    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
+    return m;
+  }
+
+ private:
+  // What sp does between passes when the device cannot: refill the free slot list (or degrade
+  // the frame), then the rest of the frame through the host-driven sp loop.
+  void finishOnHost(const FrameSetup& f, const GraphLoop& loop, FrameStats& stats) {
+    if (loop.live != buffers_.live.data()) std::swap(buffers_.live, buffers_.next);
+    if (loop.exit == GRAPH_FAILED && cache_.refill() == 0) cache_.setDegraded(true);
+    if (stats.passes >= SP_MAX_PASSES) cache_.setDegraded(true);
+    runSpLoopCuda(f, cache_, buffers_, loop.liveCount, false, stats);
+  }
+
+  BrickCacheCuda cache_;
+  SpBuffersCuda buffers_;
+  DeviceBuffer<GraphFrame> frame_;
+  DeviceBuffer<GraphLoop> loop_;
+  cudaGraphExec_t exec_;
+  GpuTimer timer_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& o) {
+  return std::make_unique<GraphCuda>(o);
+}
+
+}  // namespace gvdp

@@ -1,0 +1,125 @@
+// Kernels of the graph scheduler: the sp passes written as grid-stride loops over counts in
+// device memory (a graph's launch sizes are fixed), and the two one-thread control kernels that
+// swap the live-ray lists and set the WHILE node's condition (cudaGraphSetConditional).
+#include "gvdp/base/cuda_util.h"
+#include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/sched/compaction.cuh"
+#include "gvdp/sched/graph_cuda.h"
+#include "gvdp/sched/produce_block.cuh"
+#include "gvdp/sched/ray_tasks.h"
+#include "gvdp/sched/sp.h"
+
+namespace gvdp {
+namespace {
+
+constexpr int RENDER_BLOCK = 128;
+
+// Pass 0 covers the screen in 8x8 tiles from fresh states; later passes the live list.
+__global__ void __launch_bounds__(RENDER_BLOCK)
+    graphRenderKernel(const GraphFrame* __restrict__ g, GraphLoop* loop) {
+  BlockTimer timer(TaskKind::Render);
+  const FrameSetup& f = g->frame;
+  bool tiled = loop->passes == 0;
+  uint32_t count = tiled ? static_cast<uint32_t>(tileCount(f) * TILE * TILE) : loop->liveCount;
+  const uint32_t* live = loop->live;
+  uint32_t* next = loop->next;
+  uint32_t stride = gridDim.x * blockDim.x;
+  for (uint32_t base = blockIdx.x * blockDim.x; base < count; base += stride) {
+    uint32_t i = base + threadIdx.x;
+    int pixel = -1;
+    if (i < count) pixel = tiled ? tiledPixel(f, static_cast<int>(i)) : static_cast<int>(live[i]);
+    bool stopped = false;
+    if (pixel >= 0) {
+      if (tiled) g->payload[pixel] = initialRayState();
+      stopped = renderRay(f, g->cache, g->pool, g->payload, pixel);
+    }
+    appendStopped(stopped, static_cast<uint32_t>(pixel), next, &loop->nextCount);
+  }
+}
+
+__global__ void afterRenderKernel(const GraphFrame* g, GraphLoop* loop,
+                                  cudaGraphConditionalHandle handle) {
+  uint32_t* t = loop->live;
+  loop->live = loop->next;
+  loop->next = t;
+  loop->liveCount = loop->nextCount;
+  loop->nextCount = 0;
+  ++loop->passes;
+  if (loop->liveCount == 0) {
+    loop->stop = 1;
+    cudaGraphSetConditional(handle, 0);
+  } else {
+    loop->failedBefore = g->cache.counters[COUNTER_FAILED];
+  }
+}
+
+__global__ void __launch_bounds__(PRODUCE_BLOCK)
+    graphProduceKernel(const GraphFrame* __restrict__ g, const GraphLoop* loop) {
+  BlockTimer timer(TaskKind::Produce);
+  if (loop->stop) return;
+  const CacheView& cache = g->cache;
+  uint32_t requests = cache.counters[COUNTER_REQUESTS];
+  requests = requests < cache.requestCapacity ? requests : cache.requestCapacity;
+  for (uint32_t b = blockIdx.x; b < requests; b += gridDim.x)
+    produceBrickBlock(g->frame.scene, cache, g->pool, cache.requests[b]);
+}
+
+__global__ void afterProduceKernel(const GraphFrame* g, GraphLoop* loop,
+                                   cudaGraphConditionalHandle handle) {
+  if (loop->stop) return;
+  g->cache.counters[COUNTER_REQUESTS] = 0;
+  uint32_t exit = g->cache.counters[COUNTER_FAILED] != loop->failedBefore ? GRAPH_FAILED
+                  : loop->passes >= static_cast<uint32_t>(SP_MAX_PASSES)  ? GRAPH_MAX_PASSES
+                                                                          : GRAPH_DONE;
+  if (exit != GRAPH_DONE) {
+    loop->exit = exit;
+    loop->stop = 1;
+    cudaGraphSetConditional(handle, 0);
+  }
+}
+
+template <class Kernel>
+int residentBlocks(Kernel kernel, int threads) {
+  int device = 0, sms = 0, perSm = 0;
+  GVDP_CUDA_CHECK(cudaGetDevice(&device));
+  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  GVDP_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, kernel, threads, 0));
+  return sms * (perSm > 0 ? perSm : 1);
+}
+
+}  // namespace
+
+cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop) {
+  int renderBlocks = residentBlocks(graphRenderKernel, RENDER_BLOCK);
+  int produceBlocks = residentBlocks(graphProduceKernel, PRODUCE_BLOCK);
+  cudaGraph_t graph = nullptr;
+  GVDP_CUDA_CHECK(cudaGraphCreate(&graph, 0));
+  cudaGraphConditionalHandle handle = 0;
+  GVDP_CUDA_CHECK(cudaGraphConditionalHandleCreate(&handle, graph, 1, cudaGraphCondAssignDefault));
+  cudaGraphNodeParams params{};
+  params.type = cudaGraphNodeTypeConditional;
+  params.conditional.handle = handle;
+  params.conditional.type = cudaGraphCondTypeWhile;
+  params.conditional.size = 1;
+  cudaGraphNode_t node = nullptr;
+  GVDP_CUDA_CHECK(cudaGraphAddNode(&node, graph, nullptr, nullptr, 0, &params));
+  cudaGraph_t body = params.conditional.phGraph_out[0];
+
+  cudaStream_t stream = nullptr;
+  GVDP_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+  GVDP_CUDA_CHECK(cudaStreamBeginCaptureToGraph(stream, body, nullptr, nullptr, 0,
+                                                cudaStreamCaptureModeRelaxed));
+  graphRenderKernel<<<renderBlocks, RENDER_BLOCK, 0, stream>>>(frame, loop);
+  afterRenderKernel<<<1, 1, 0, stream>>>(frame, loop, handle);
+  graphProduceKernel<<<produceBlocks, PRODUCE_BLOCK, 0, stream>>>(frame, loop);
+  afterProduceKernel<<<1, 1, 0, stream>>>(frame, loop, handle);
+  GVDP_CUDA_CHECK(cudaStreamEndCapture(stream, &body));
+  GVDP_CUDA_CHECK(cudaStreamDestroy(stream));
+
+  cudaGraphExec_t exec = nullptr;
+  GVDP_CUDA_CHECK(cudaGraphInstantiate(&exec, graph, 0));
+  GVDP_CUDA_CHECK(cudaGraphDestroy(graph));
+  return exec;
+}
+
+}  // namespace gvdp

@@ -1,0 +1,212 @@
+// The persistent-threads scheduler (pt) as one protocol for both backends: workers (GPU warps,
+// CPU threads) pull tasks from device work queues until every ray of the frame has finished.
+//
+// Queues (lock-free rings of uint32, one atomic per batch):
+//   tasks    production task ids, served first;
+//   rays     pixels of relaunched rays, taken 32 at a time (full warps, seed 004);
+//   fresh    the screen itself, 8x4-pixel halves of the 8x8 tiles, through a counter.
+// A ray that wins MISSING -> IN_PRODUCTION takes a task id from the `freeIds` ring, names the
+// task in the entry (ENTRY_PRODUCTION_TASK + id) and queues it. A ray that stops on a brick in
+// production parks itself on that task's wait list (a lock-free stack through `waitNext`);
+// the production closes the list after publishing the brick and queues its rays as full warps.
+// A push onto a closed list fails and the ray marches on: no ray is ever lost or held twice.
+//
+// Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
+// so `rays` holds at most `pixels` items; every unfinished task has its winning ray parked on
+// it or about to be, so at most pixels + workers ids are out of `freeIds` at once.
+#pragma once
+
+#include "gvdp/render/cached_access.h"
+#include "gvdp/sched/ray_tasks.h"
+
+namespace gvdp {
+
+constexpr uint32_t LIST_END = 0xffffffffu, LIST_CLOSED = 0xfffffffeu;
+constexpr int PT_BATCH = 32;           // rays per render task (a warp)
+constexpr int PT_COUNTER_STRIDE = 32;  // counters sit 128 bytes apart (no false sharing)
+
+enum PtCounter : int {
+  PT_RAY_HEAD,
+  PT_RAY_TAIL,
+  PT_TASK_HEAD,
+  PT_TASK_TAIL,
+  PT_FREE_HEAD,
+  PT_FREE_TAIL,
+  PT_NEXT_ITEM,     // next item of the tiled screen (fresh rays)
+  PT_LIVE_RAYS,     // rays not finished; the frame is over at 0
+  PT_PRODUCTIONS,   // production tasks run
+  PT_RELAUNCHED,    // rays queued again by a production
+  PT_RENDER_TASKS,  // render tasks run (fresh and relaunched)
+  PT_NO_TASK_ID,    // misses with no free task id (never, by the capacity argument)
+  PT_COUNTER_COUNT
+};
+
+// A bounded multi-producer multi-consumer ring (D. Vyukov's): a slot is (sequence, value) in one
+// 64-bit word; the producer of position p waits for sequence p and leaves p + 1, the consumer
+// waits for p + 1 and leaves p + capacity, so each slot serves its laps strictly in order.
+// Positions only grow within a frame (32 bits, wrapping harmlessly: capacity divides 2^32).
+struct Ring {
+  uint64_t* slots;
+  uint32_t mask;  // capacity - 1, capacity a power of two
+  uint32_t* head;
+  uint32_t* tail;
+};
+
+GVDP_HD GVDP_INLINE uint64_t ringSlot(uint32_t sequence, uint32_t value) {
+  return static_cast<uint64_t>(sequence) << 32 | value;
+}
+
+// Slot i of a ring whose first `filled` positions hold the values 0, 1, ... (free ids).
+GVDP_HD GVDP_INLINE uint64_t ringInitialSlot(uint32_t i, uint32_t filled) {
+  return i < filled ? ringSlot(i + 1, i) : ringSlot(i, 0);
+}
+
+GVDP_HD GVDP_INLINE uint32_t ringReserve(const Ring& r, uint32_t n) {
+  return atomicAdd32(r.tail, n);
+}
+
+GVDP_HD GVDP_INLINE void ringStore(const Ring& r, uint32_t position, uint32_t value) {
+  uint64_t* s = &r.slots[position & r.mask];
+  while (static_cast<uint32_t>(loadAcquire64(s) >> 32) != position) spinPause();  // last lap
+  storeRelease64(s, ringSlot(position + 1, value));
+}
+
+// Claims up to n positions from the head: returns how many, the first in *position.
+GVDP_HD GVDP_INLINE uint32_t ringClaim(const Ring& r, uint32_t n, uint32_t* position) {
+  for (;;) {
+    uint32_t h = loadAcquire32(r.head), t = loadAcquire32(r.tail);
+    if (t == h) return 0;
+    uint32_t k = t - h < n ? t - h : n;
+    if (atomicCas32(r.head, h, h + k) == h) {
+      *position = h;
+      return k;
+    }
+  }
+}
+
+// The value at a claimed position (waiting for its producer's store); frees the slot.
+GVDP_HD GVDP_INLINE uint32_t ringTake(const Ring& r, uint32_t position) {
+  uint64_t* s = &r.slots[position & r.mask];
+  uint64_t v;
+  while (static_cast<uint32_t>((v = loadAcquire64(s)) >> 32) != position + 1) spinPause();
+  storeRelease64(s, ringSlot(position + r.mask + 1, 0));
+  return static_cast<uint32_t>(v);
+}
+
+struct PtContext {
+  FrameSetup frame;
+  CacheView cache;
+  RayState* payload;
+  Ring rays, tasks, freeIds;
+  BrickKey* taskKey;   // per task id
+  uint32_t* waitHead;  // per task id: LIST_END, a pixel, or LIST_CLOSED
+  uint32_t* waitNext;  // per pixel
+  uint32_t* counters;  // PtCounter, PT_COUNTER_STRIDE apart
+  uint32_t itemCount;  // items of the tiled screen (tileCount * 64)
+
+  GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
+};
+
+GVDP_HD GVDP_INLINE BrickKey loadTaskKey(const PtContext& ctx, uint32_t id) {
+  const uint32_t* k = reinterpret_cast<const uint32_t*>(&ctx.taskKey[id]);
+  return {{static_cast<int>(loadRelaxed32(k)), static_cast<int>(loadRelaxed32(k + 1)),
+           static_cast<int>(loadRelaxed32(k + 2))},
+          static_cast<int>(loadRelaxed32(k + 3))};
+}
+
+// pt's answer to a won CAS: a task id, the task named in the entry, the task queued.
+struct StartProduction {
+  const PtContext* ctx;
+  GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
+    uint32_t position = 0;
+    if (ringClaim(ctx->freeIds, 1, &position) == 0) {  // cannot happen; degrade if it does
+      atomicAdd32(ctx->counter(PT_NO_TASK_ID), 1u);
+      atomicAdd32(&cache.counters[COUNTER_FAILED], 1u);
+      storeRelease32(entry, ENTRY_MISSING);
+      return;
+    }
+    uint32_t id = ringTake(ctx->freeIds, position);
+    uint32_t* k = reinterpret_cast<uint32_t*>(&ctx->taskKey[id]);
+    storeRelaxed32(k, static_cast<uint32_t>(g.x));
+    storeRelaxed32(k + 1, static_cast<uint32_t>(g.y));
+    storeRelaxed32(k + 2, static_cast<uint32_t>(g.z));
+    storeRelaxed32(k + 3, static_cast<uint32_t>(level));
+    storeRelaxed32(&ctx->waitHead[id], LIST_END);
+    storeRelease32(entry, ENTRY_PRODUCTION_TASK + id);
+    ringStore(ctx->tasks, ringReserve(ctx->tasks, 1), id);
+  }
+};
+
+// Parks a stopped ray (its state already saved) on the wait list of the task producing the
+// brick it stopped on; false when there is no such task any more: the ray must march on.
+GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uint32_t* stopEntry) {
+  for (;;) {
+    uint32_t e = loadAcquire32(stopEntry);
+    if (e == ENTRY_IN_PRODUCTION) {  // the winner is still naming its task
+      spinPause();
+      continue;
+    }
+    int64_t id = productionTaskOf(e);
+    if (id < 0) return false;  // published (or MISSING again after a failure)
+    // A stale id (the task finished and its id was reused) parks the ray on another task:
+    // harmless, that task relaunches it too.
+    uint32_t* head = &ctx.waitHead[id];
+    uint32_t h = loadAcquire32(head);
+    while (h != LIST_CLOSED) {
+      storeRelaxed32(&ctx.waitNext[pixel], h);
+      fenceSeqCst();  // the payload and the link before the push
+      uint32_t seen = atomicCas32(head, h, pixel);
+      if (seen == h) return true;
+      h = seen;
+    }
+    return false;  // closed: the brick was published before the list closed
+  }
+}
+
+// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false).
+template <class Pool>
+GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel) {
+  const FrameSetup& f = ctx.frame;
+  Ray ray = f.primaryRay(static_cast<int>(pixel) % f.width, static_cast<int>(pixel) / f.width);
+  for (;;) {
+    RayState s = loadRayState(&ctx.payload[pixel]);
+    CachedAccess<Pool, StartProduction> access{ctx.cache, pool, f.lod, StartProduction{&ctx}};
+    MarchResult r = march(ray, f.lod, s, access);
+    storeRayState(&ctx.payload[pixel], s);
+    if (r == MarchResult::Finished) return true;
+    if (parkRay(ctx, pixel, access.stopEntry)) return false;
+  }
+}
+
+// After a task's brick is published: closes its wait list and returns its first ray (walk the
+// rest through waitNext, reading a link before queueing its ray, which may park again).
+GVDP_HD GVDP_INLINE uint32_t closeWaitList(const PtContext& ctx, uint32_t id) {
+  uint32_t first = atomicExch32(&ctx.waitHead[id], LIST_CLOSED);
+  fenceSeqCst();
+  return first;
+}
+
+GVDP_HD GVDP_INLINE void releaseTaskId(const PtContext& ctx, uint32_t id) {
+  ringStore(ctx.freeIds, ringReserve(ctx.freeIds, 1), id);
+}
+
+// One worker's single-threaded version of the end of a production task (CPU backend).
+GVDP_HD GVDP_INLINE void finishProductionTask(const PtContext& ctx, uint32_t id) {
+  uint32_t relaunched = 0;
+  for (uint32_t p = closeWaitList(ctx, id); p != LIST_END; ++relaunched) {
+    uint32_t next = loadRelaxed32(&ctx.waitNext[p]);
+    ringStore(ctx.rays, ringReserve(ctx.rays, 1), p);
+    p = next;
+  }
+  atomicAdd32(ctx.counter(PT_RELAUNCHED), relaunched);
+  releaseTaskId(ctx, id);
+}
+
+// A ring capacity for at most n items at once: a power of two > n.
+GVDP_HD GVDP_INLINE uint32_t ringCapacity(uint32_t n) {
+  uint32_t c = 1;
+  while (c <= n) c <<= 1;
+  return c;
+}
+
+}  // namespace gvdp

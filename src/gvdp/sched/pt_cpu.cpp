@@ -1,0 +1,138 @@
+#include <chrono>
+#include <vector>
+
+#include "gvdp/base/parallel.h"
+#include "gvdp/profile/timeline.h"
+#include "gvdp/render/brick_pool.h"
+#include "gvdp/sched/pt.h"
+#include "gvdp/sched/pt_body.h"
+#include "gvdp/sched/sp_loop_cpu.h"
+
+namespace gvdp {
+namespace {
+
+class PtCpu final : public Scheduler {
+ public:
+  explicit PtCpu(const SchedulerOptions& o)
+      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CPU) {}
+
+  FrameStats render(const FrameSetup& f, Image& out) override {
+    timelineBegin();
+    auto t0 = std::chrono::steady_clock::now();
+    FrameStats stats;
+    stats.index = f.frameIndex;
+    cache_.beginFrame(f);
+    PtContext ctx = prepare(f);
+    BrickPool pool{cache_.texels()};
+    ThreadPool& threads = ThreadPool::global();
+    threads.run(
+        threads.size(), 1, [&](int64_t, int64_t, int worker) { work(ctx, pool, worker); },
+        NO_RECORD);
+    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
+    stats.cache = cache_.frameStats();
+    stats.degraded = cache_.degraded() || stats.cache.failed != 0;
+    stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
+    stats.launchFailures = *ctx.counter(PT_NO_TASK_ID);
+    stats.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    timelineEnd(stats);
+    return stats;
+  }
+
+  MemoryReport memory() const override {
+    MemoryReport m = cache_.memory();
+    m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
+    m.push_back({"pt_queues_and_wait_lists",
+                 (raySlots_.size() + taskSlots_.size() + freeSlots_.size()) * sizeof(uint64_t) +
+                     (waitHead_.size() + waitNext_.size() + counters_.size()) * sizeof(uint32_t) +
+                     taskKey_.size() * sizeof(BrickKey)});
+    return m;
+  }
+
+ private:
+  PtContext prepare(const FrameSetup& f) {
+    uint32_t n = static_cast<uint32_t>(f.pixelCount());
+    uint32_t ids = n + static_cast<uint32_t>(ThreadPool::global().size());
+    payload_.assign(n, initialRayState());
+    auto initRing = [](std::vector<uint64_t>& slots, uint32_t capacity, uint32_t filled) {
+      slots.resize(capacity);
+      for (uint32_t i = 0; i < capacity; ++i) slots[i] = ringInitialSlot(i, filled);
+    };
+    initRing(raySlots_, ringCapacity(n), 0);
+    initRing(taskSlots_, ringCapacity(ids), 0);
+    initRing(freeSlots_, ringCapacity(ids), ids);
+    taskKey_.resize(ids);
+    waitHead_.assign(ids, LIST_CLOSED);
+    waitNext_.assign(n, LIST_END);
+    counters_.assign(PT_COUNTER_COUNT * PT_COUNTER_STRIDE, 0u);
+    PtContext ctx{};
+    ctx.frame = f;
+    ctx.cache = cache_.view();
+    ctx.cache.degradeOnFailure = 1;
+    ctx.payload = payload_.data();
+    ctx.counters = counters_.data();
+    auto ring = [&](std::vector<uint64_t>& slots, PtCounter head, PtCounter tail) {
+      return Ring{slots.data(), static_cast<uint32_t>(slots.size() - 1), ctx.counter(head),
+                  ctx.counter(tail)};
+    };
+    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL);
+    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL);
+    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL);
+    *ctx.counter(PT_FREE_TAIL) = ids;
+    *ctx.counter(PT_LIVE_RAYS) = n;
+    ctx.taskKey = taskKey_.data();
+    ctx.waitHead = waitHead_.data();
+    ctx.waitNext = waitNext_.data();
+    ctx.itemCount = static_cast<uint32_t>(tileCount(f) * TILE * TILE);
+    return ctx;
+  }
+
+  // One worker: production first, then relaunched rays, then fresh tiles, until no ray is left.
+  void work(const PtContext& ctx, const BrickPool& pool, int worker) {
+    const FrameSetup& f = ctx.frame;
+    while (loadAcquire32(ctx.counter(PT_LIVE_RAYS)) != 0) {
+      uint64_t start = steadyNanoseconds();
+      TaskKind kind = TaskKind::Render;
+      uint32_t position = 0, finished = 0;
+      if (ringClaim(ctx.tasks, 1, &position)) {
+        uint32_t id = ringTake(ctx.tasks, position);
+        cache_.produce(f.scene, ctx.cache, loadTaskKey(ctx, id));
+        finishProductionTask(ctx, id);
+        atomicAdd32(ctx.counter(PT_PRODUCTIONS), 1u);
+        kind = TaskKind::Produce;
+      } else if (uint32_t n = ringClaim(ctx.rays, PT_BATCH, &position)) {
+        uint32_t batch[PT_BATCH];
+        for (uint32_t i = 0; i < n; ++i) batch[i] = ringTake(ctx.rays, position + i);
+        for (uint32_t i = 0; i < n; ++i) finished += ptRunRay(ctx, pool, batch[i]) ? 1u : 0u;
+        atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
+      } else if (loadRelaxed32(ctx.counter(PT_NEXT_ITEM)) < ctx.itemCount) {
+        uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_ITEM), PT_BATCH);
+        for (uint32_t i = first; i < first + PT_BATCH && i < ctx.itemCount; ++i) {
+          int pixel = tiledPixel(f, static_cast<int>(i));
+          if (pixel >= 0) finished += ptRunRay(ctx, pool, static_cast<uint32_t>(pixel)) ? 1u : 0u;
+        }
+        atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
+      } else {
+        spinPause();
+        continue;
+      }
+      if (finished) atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);
+      if (TaskObserver o = taskObserver())
+        o(static_cast<uint8_t>(kind), worker, start, steadyNanoseconds());
+    }
+  }
+
+  BrickCacheCpu cache_;
+  std::vector<RayState> payload_;
+  std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_;
+  std::vector<uint32_t> waitHead_, waitNext_, counters_;
+  std::vector<BrickKey> taskKey_;
+};
+
+}  // namespace
+
+std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& o) {
+  return std::make_unique<PtCpu>(o);
+}
+
+}  // namespace gvdp

@@ -1,0 +1,136 @@
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <thread>
+#include <vector>
+
+#include "gvdp/sched/pt_body.h"
+#include "test_util.h"
+
+namespace gvdp {
+
+using test::renderRun;
+using test::Renders;
+using test::sceneName;
+
+class PtCpuTest : public ::testing::TestWithParam<int> {};
+
+// pt renders the very images sp renders, and finishes every ray itself (no sweep exists).
+TEST_P(PtCpuTest, MatchesSpBitForBitOnA20FrameWalkthrough) {
+  Renders sp = renderRun(sceneName(GetParam()), {Backend::Cpu, SchedulerKind::Sp}, 20, 48, 32);
+  Renders pt = renderRun(sceneName(GetParam()), {Backend::Cpu, SchedulerKind::Pt}, 20, 48, 32);
+  for (int f = 0; f < 20; ++f) {
+    EXPECT_EQ(sp.images[f].pixels, pt.images[f].pixels) << "frame " << f;
+    EXPECT_EQ(pt.stats[f].unfinishedPixels, 0);
+    EXPECT_EQ(pt.stats[f].launchFailures, 0u) << "no miss may go without a task id";
+    EXPECT_FALSE(pt.stats[f].degraded);
+  }
+  EXPECT_GT(pt.stats[0].launches, 0u);
+  EXPECT_GT(pt.stats[0].cache.produced + pt.stats[0].cache.empty, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, PtCpuTest, ::testing::Range(0, SCENE_COUNT));
+
+TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
+  Renders pt = renderRun("forest", {Backend::Cpu, SchedulerKind::Pt, 64}, 3, 96, 60);
+  for (const FrameStats& s : pt.stats) {
+    EXPECT_EQ(s.unfinishedPixels, 0);
+    EXPECT_TRUE(s.degraded);
+  }
+}
+
+// The ring under contention: every value pushed by 4 producers comes out exactly once, through a
+// ring of capacity 8 (slots are reused many times while slow consumers still hold positions).
+TEST(PtRing, EveryValueComesOutExactlyOnce) {
+  constexpr uint32_t PER_PRODUCER = 20000, PRODUCERS = 4;
+  std::vector<uint64_t> slots(8);
+  for (uint32_t i = 0; i < 8; ++i) slots[i] = ringInitialSlot(i, 0);
+  std::vector<uint32_t> counters(2 * PT_COUNTER_STRIDE, 0u);
+  Ring ring{slots.data(), 7u, &counters[0], &counters[PT_COUNTER_STRIDE]};
+  std::vector<uint32_t> seen(PER_PRODUCER * PRODUCERS, 0u);
+  uint32_t taken = 0;
+  std::vector<std::thread> threads;
+  for (uint32_t p = 0; p < PRODUCERS; ++p)
+    threads.emplace_back([&, p] {
+      for (uint32_t i = 0; i < PER_PRODUCER; ++i)
+        ringStore(ring, ringReserve(ring, 1), p * PER_PRODUCER + i);
+    });
+  for (int c = 0; c < 2; ++c)
+    threads.emplace_back([&] {
+      while (loadAcquire32(&taken) < PER_PRODUCER * PRODUCERS) {
+        uint32_t position = 0;
+        uint32_t n = ringClaim(ring, 3, &position);
+        for (uint32_t i = 0; i < n; ++i) atomicAdd32(&seen[ringTake(ring, position + i)], 1u);
+        atomicAdd32(&taken, n);
+        if (n == 0) spinPause();
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  for (uint32_t v = 0; v < seen.size(); ++v) ASSERT_EQ(seen[v], 1u) << "value " << v;
+  EXPECT_EQ(*ring.head, PER_PRODUCER * PRODUCERS);
+}
+
+// A wait list: rays parked before the close come back once; a push after the close fails.
+TEST(PtWaitList, ParkedRaysComeBackAndLateRaysMarchOn) {
+  std::vector<uint64_t> raySlots(16), freeSlots(4);
+  for (uint32_t i = 0; i < 16; ++i) raySlots[i] = ringInitialSlot(i, 0);
+  for (uint32_t i = 0; i < 4; ++i) freeSlots[i] = ringInitialSlot(i, 0);
+  std::vector<uint32_t> counters(PT_COUNTER_COUNT * PT_COUNTER_STRIDE, 0u), waitHead(4, LIST_END),
+      waitNext(16, LIST_END);
+  PtContext ctx{};
+  ctx.counters = counters.data();
+  ctx.rays = {raySlots.data(), 15u, ctx.counter(PT_RAY_HEAD), ctx.counter(PT_RAY_TAIL)};
+  ctx.freeIds = {freeSlots.data(), 3u, ctx.counter(PT_FREE_HEAD), ctx.counter(PT_FREE_TAIL)};
+  ctx.waitHead = waitHead.data();
+  ctx.waitNext = waitNext.data();
+  uint32_t entry = ENTRY_PRODUCTION_TASK + 2;
+  for (uint32_t pixel : {3u, 7u, 11u}) EXPECT_TRUE(parkRay(ctx, pixel, &entry));
+  finishProductionTask(ctx, 2);
+  std::vector<uint32_t> back;
+  uint32_t position = 0;
+  for (uint32_t n = ringClaim(ctx.rays, 8, &position), i = 0; i < n; ++i)
+    back.push_back(ringTake(ctx.rays, position + i));
+  std::sort(back.begin(), back.end());
+  EXPECT_EQ(back, (std::vector<uint32_t>{3, 7, 11}));
+  EXPECT_EQ(*ctx.counter(PT_RELAUNCHED), 3u);
+  EXPECT_FALSE(parkRay(ctx, 5, &entry)) << "the list is closed: the ray must march on";
+  uint32_t resident = 42;
+  EXPECT_FALSE(parkRay(ctx, 5, &resident));
+  EXPECT_EQ(ringTake(ctx.freeIds, 0), 2u) << "the task id is free again";
+}
+
+class GpuPtTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(GpuPtTest, PtAndGraphMatchGpuSpBitForBitOnA20FrameWalkthrough) {
+  GVDP_REQUIRE_GPU();
+  std::string scene = sceneName(GetParam());
+  Renders sp = renderRun(scene, {Backend::Cuda, SchedulerKind::Sp}, 20, 320, 200);
+  for (SchedulerKind kind : {SchedulerKind::Pt, SchedulerKind::Graph}) {
+    Renders r = renderRun(scene, {Backend::Cuda, kind}, 20, 320, 200);
+    int64_t unfinished = 0, differing = 0;
+    for (int f = 0; f < 20; ++f) {
+      differing += sp.images[f].pixels != r.images[f].pixels;
+      EXPECT_EQ(sp.images[f].pixels, r.images[f].pixels)
+          << scene << " " << schedulerName(kind) << " frame " << f;
+      unfinished += r.stats[f].unfinishedPixels;
+      EXPECT_EQ(r.stats[f].launchFailures, 0u);
+    }
+    std::printf(
+        "[ measure ] %s %s vs sp cuda 320x200 x20: %lld differing frames, %lld unfinished\n",
+        scene.c_str(), std::string(schedulerName(kind)).c_str(), static_cast<long long>(differing),
+        static_cast<long long>(unfinished));
+    EXPECT_EQ(unfinished, 0);
+  }
+}
+
+TEST_P(GpuPtTest, TinyPoolFinishesEveryPixel) {
+  GVDP_REQUIRE_GPU();
+  for (SchedulerKind kind : {SchedulerKind::Pt, SchedulerKind::Graph}) {
+    Renders a = renderRun(sceneName(GetParam()), {Backend::Cuda, kind, 64}, 3, 320, 200);
+    for (const FrameStats& s : a.stats) EXPECT_EQ(s.unfinishedPixels, 0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, GpuPtTest, ::testing::Range(0, SCENE_COUNT));
+
+}  // namespace gvdp
