@@ -28,16 +28,18 @@ constexpr int PT_COUNTER_STRIDE = 32;  // counters sit 128 bytes apart (no false
 enum PtCounter : int {
   PT_RAY_HEAD,
   PT_RAY_TAIL,
+  PT_RAY_READY,
   PT_TASK_HEAD,
   PT_TASK_TAIL,
+  PT_TASK_READY,
   PT_FREE_HEAD,
   PT_FREE_TAIL,
+  PT_FREE_READY,
   PT_NEXT_ITEM,     // next item of the tiled screen (fresh rays)
   PT_LIVE_RAYS,     // rays not finished; the frame is over at 0
   PT_PRODUCTIONS,   // production tasks run
   PT_RELAUNCHED,    // rays queued again by a production
   PT_RENDER_TASKS,  // render tasks run (fresh and relaunched)
-  PT_NO_TASK_ID,    // misses with no free task id (never, by the capacity argument)
   PT_COUNTER_COUNT
 };
 
@@ -45,11 +47,14 @@ enum PtCounter : int {
 // 64-bit word; the producer of position p waits for sequence p and leaves p + 1, the consumer
 // waits for p + 1 and leaves p + capacity, so each slot serves its laps strictly in order.
 // Positions only grow within a frame (32 bits, wrapping harmlessly: capacity divides 2^32).
+// Claims are atomic adds on `ready`, never CAS loops: thousands of warps polling a queue would
+// otherwise spend their time retrying.
 struct Ring {
   uint64_t* slots;
-  uint32_t mask;  // capacity - 1, capacity a power of two
-  uint32_t* head;
-  uint32_t* tail;
+  uint32_t mask;    // capacity - 1, capacity a power of two
+  uint32_t* head;   // next position to claim
+  uint32_t* tail;   // next position to reserve
+  uint32_t* ready;  // items published and not claimed (int32, dips below 0 for a moment)
 };
 
 GVDP_HD GVDP_INLINE uint64_t ringSlot(uint32_t sequence, uint32_t value) {
@@ -71,17 +76,27 @@ GVDP_HD GVDP_INLINE void ringStore(const Ring& r, uint32_t position, uint32_t va
   storeRelease64(s, ringSlot(position + 1, value));
 }
 
-// Claims up to n positions from the head: returns how many, the first in *position.
+// Makes n stored items claimable.
+GVDP_HD GVDP_INLINE void ringPublish(const Ring& r, uint32_t n) {
+  atomicAdd32(r.ready, n);
+}
+
+GVDP_HD GVDP_INLINE void ringPush(const Ring& r, uint32_t value) {
+  ringStore(r, ringReserve(r, 1), value);
+  ringPublish(r, 1);
+}
+
+// Claims up to n published items: returns how many, the first position in *position.
 GVDP_HD GVDP_INLINE uint32_t ringClaim(const Ring& r, uint32_t n, uint32_t* position) {
-  for (;;) {
-    uint32_t h = loadAcquire32(r.head), t = loadAcquire32(r.tail);
-    if (t == h) return 0;
-    uint32_t k = t - h < n ? t - h : n;
-    if (atomicCas32(r.head, h, h + k) == h) {
-      *position = h;
-      return k;
-    }
-  }
+  if (static_cast<int32_t>(loadRelaxed32(r.ready)) <= 0) return 0;
+  int32_t before = static_cast<int32_t>(atomicAdd32(r.ready, 0u - n));
+  uint32_t k = before >= static_cast<int32_t>(n) ? n
+               : before > 0                      ? static_cast<uint32_t>(before)
+                                                 : 0u;
+  if (k < n) atomicAdd32(r.ready, n - k);
+  if (k == 0) return 0;
+  *position = atomicAdd32(r.head, k);
+  return k;
 }
 
 // The value at a claimed position (waiting for its producer's store); frees the slot.
@@ -114,18 +129,12 @@ GVDP_HD GVDP_INLINE BrickKey loadTaskKey(const PtContext& ctx, uint32_t id) {
           static_cast<int>(loadRelaxed32(k + 3))};
 }
 
-// pt's answer to a won CAS: a task id, the task named in the entry, the task queued.
+// pt's answer to a won CAS: a task id, the task named in the entry, the task queued. A free id
+// always comes (the capacity argument above): the claim does not check, it waits for its id.
 struct StartProduction {
   const PtContext* ctx;
-  GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
-    uint32_t position = 0;
-    if (ringClaim(ctx->freeIds, 1, &position) == 0) {  // cannot happen; degrade if it does
-      atomicAdd32(ctx->counter(PT_NO_TASK_ID), 1u);
-      atomicAdd32(&cache.counters[COUNTER_FAILED], 1u);
-      storeRelease32(entry, ENTRY_MISSING);
-      return;
-    }
-    uint32_t id = ringTake(ctx->freeIds, position);
+  GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
+    uint32_t id = ringTake(ctx->freeIds, atomicAdd32(ctx->freeIds.head, 1u));
     uint32_t* k = reinterpret_cast<uint32_t*>(&ctx->taskKey[id]);
     storeRelaxed32(k, static_cast<uint32_t>(g.x));
     storeRelaxed32(k + 1, static_cast<uint32_t>(g.y));
@@ -133,7 +142,7 @@ struct StartProduction {
     storeRelaxed32(k + 3, static_cast<uint32_t>(level));
     storeRelaxed32(&ctx->waitHead[id], LIST_END);
     storeRelease32(entry, ENTRY_PRODUCTION_TASK + id);
-    ringStore(ctx->tasks, ringReserve(ctx->tasks, 1), id);
+    ringPush(ctx->tasks, id);
   }
 };
 
@@ -187,7 +196,7 @@ GVDP_HD GVDP_INLINE uint32_t closeWaitList(const PtContext& ctx, uint32_t id) {
 }
 
 GVDP_HD GVDP_INLINE void releaseTaskId(const PtContext& ctx, uint32_t id) {
-  ringStore(ctx.freeIds, ringReserve(ctx.freeIds, 1), id);
+  ringPush(ctx.freeIds, id);
 }
 
 // One worker's single-threaded version of the end of a production task (CPU backend).
@@ -195,7 +204,7 @@ GVDP_HD GVDP_INLINE void finishProductionTask(const PtContext& ctx, uint32_t id)
   uint32_t relaunched = 0;
   for (uint32_t p = closeWaitList(ctx, id); p != LIST_END; ++relaunched) {
     uint32_t next = loadRelaxed32(&ctx.waitNext[p]);
-    ringStore(ctx.rays, ringReserve(ctx.rays, 1), p);
+    ringPush(ctx.rays, p);
     p = next;
   }
   atomicAdd32(ctx.counter(PT_RELAUNCHED), relaunched);

@@ -32,7 +32,6 @@ class PtCpu final : public Scheduler {
     stats.cache = cache_.frameStats();
     stats.degraded = cache_.degraded() || stats.cache.failed != 0;
     stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
-    stats.launchFailures = *ctx.counter(PT_NO_TASK_ID);
     stats.ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     timelineEnd(stats);
@@ -71,14 +70,14 @@ class PtCpu final : public Scheduler {
     ctx.cache.degradeOnFailure = 1;
     ctx.payload = payload_.data();
     ctx.counters = counters_.data();
-    auto ring = [&](std::vector<uint64_t>& slots, PtCounter head, PtCounter tail) {
+    auto ring = [&](std::vector<uint64_t>& slots, PtCounter head, PtCounter tail, PtCounter ready) {
       return Ring{slots.data(), static_cast<uint32_t>(slots.size() - 1), ctx.counter(head),
-                  ctx.counter(tail)};
+                  ctx.counter(tail), ctx.counter(ready)};
     };
-    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL);
-    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL);
-    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL);
-    *ctx.counter(PT_FREE_TAIL) = ids;
+    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL, PT_RAY_READY);
+    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL, PT_TASK_READY);
+    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL, PT_FREE_READY);
+    *ctx.counter(PT_FREE_TAIL) = *ctx.counter(PT_FREE_READY) = ids;
     *ctx.counter(PT_LIVE_RAYS) = n;
     ctx.taskKey = taskKey_.data();
     ctx.waitHead = waitHead_.data();

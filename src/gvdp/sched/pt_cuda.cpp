@@ -37,7 +37,6 @@ class PtCuda final : public Scheduler {
     GVDP_CUDA_CHECK(
         cudaMemcpy(c.data(), counters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost));
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
-    stats.launchFailures = c[PT_NO_TASK_ID * PT_COUNTER_STRIDE];
     stats.cache = cache_.frameStats();
     stats.degraded = cache_.degraded() || stats.cache.failed != 0;
     return stats;
@@ -71,7 +70,7 @@ class PtCuda final : public Scheduler {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
     GVDP_CUDA_CHECK(cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));
     std::vector<uint32_t> c(counters_.size(), 0u);
-    c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = ids_;
+    c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = ids_;
     c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = n;
     GVDP_CUDA_CHECK(
         cudaMemcpy(counters_.data(), c.data(), counters_.bytes(), cudaMemcpyHostToDevice));
@@ -81,13 +80,14 @@ class PtCuda final : public Scheduler {
     ctx.cache.degradeOnFailure = 1;
     ctx.payload = buffers_.payload.data();
     ctx.counters = counters_.data();
-    auto ring = [&](DeviceBuffer<uint64_t>& slots, PtCounter head, PtCounter tail) {
+    auto ring = [&](DeviceBuffer<uint64_t>& slots, PtCounter head, PtCounter tail,
+                    PtCounter ready) {
       return Ring{slots.data(), static_cast<uint32_t>(slots.size() - 1), ctx.counter(head),
-                  ctx.counter(tail)};
+                  ctx.counter(tail), ctx.counter(ready)};
     };
-    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL);
-    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL);
-    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL);
+    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL, PT_RAY_READY);
+    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL, PT_TASK_READY);
+    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL, PT_FREE_READY);
     ctx.taskKey = taskKey_.data();
     ctx.waitHead = waitHead_.data();
     ctx.waitNext = waitNext_.data();
