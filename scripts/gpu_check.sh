@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # On a machine with a GPU, with the binaries built elsewhere and carried in carry/: every test
-# (GPU ones included), compute-sanitizer memcheck on a short run per scheduler, then a 1500x1000
-# walkthrough of each scene per scheduler. Writes to $OUT (or out/gpu_check): device.txt,
+# (GPU ones included), compute-sanitizer memcheck and racecheck on a short run per scheduler (the
+# racecheck of all but dp on carry/nocdp/gvdp, preset nocdp), then a 1500x1000 walkthrough of
+# each scene per scheduler. Writes to $OUT (or out/gpu_check): device.txt,
 # tests.log, sanitizer.log, renders.log and montage_<scheduler>.png (frame 0 of every scene).
 # Usage: scripts/gpu_check.sh [frames] [schedulers...]
 set -uo pipefail
@@ -22,7 +23,10 @@ for sched in "${schedulers[@]}"; do
     --scheduler "$sched" --scene forest --width 320 --height 200 --frames 3 --pool-bricks 20000 \
     --out /tmp/memcheck >>"$out/sanitizer.log" 2>&1 || status=1
   echo "memcheck $sched: $(grep -E "ERROR SUMMARY" "$out/sanitizer.log" | tail -n 1)"
-  compute-sanitizer --tool racecheck --error-exitcode 9 ./carry/gvdp render --backend cuda \
+  # racecheck refuses binaries with device-side launches: all but dp use the GVDP_CDP=OFF build.
+  race_bin=./carry/gvdp
+  [ "$sched" != dp ] && [ -x ./carry/nocdp/gvdp ] && race_bin=./carry/nocdp/gvdp
+  compute-sanitizer --tool racecheck --error-exitcode 9 "$race_bin" render --backend cuda \
     --scheduler "$sched" --scene perlin --width 160 --height 100 --frames 2 --pool-bricks 20000 \
     --out /tmp/racecheck >>"$out/sanitizer.log" 2>&1 || status=1
   echo "racecheck $sched: $(grep -E "ERROR SUMMARY|RACECHECK SUMMARY" "$out/sanitizer.log" | tail -n 1)"

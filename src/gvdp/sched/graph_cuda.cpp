@@ -10,9 +10,8 @@ class GraphCuda final : public Scheduler {
  public:
   explicit GraphCuda(const SchedulerOptions& o)
       : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
-        frame_(1),
         loop_(1),
-        exec_(buildSpGraph(frame_.data(), loop_.data())) {}
+        exec_(buildSpGraph(loop_.data())) {}
   ~GraphCuda() override { cudaGraphExecDestroy(exec_); }
 
   FrameStats render(const FrameSetup& f, Image& out) override {
@@ -24,8 +23,8 @@ class GraphCuda final : public Scheduler {
     timer_.start();
     cache_.beginFrame(f);
     GraphFrame g{f, cache_.view(), cache_.pool(), buffers_.payload.data()};
-    GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0};
-    GVDP_CUDA_CHECK(cudaMemcpyAsync(frame_.data(), &g, sizeof g, cudaMemcpyHostToDevice));
+    GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0, 0};
+    uploadGraphFrame(g);
     GVDP_CUDA_CHECK(cudaMemcpyAsync(loop_.data(), &loop, sizeof loop, cudaMemcpyHostToDevice));
     GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, nullptr));
     GVDP_CUDA_CHECK(cudaMemcpy(&loop, loop_.data(), sizeof loop, cudaMemcpyDeviceToHost));
@@ -59,7 +58,6 @@ class GraphCuda final : public Scheduler {
 
   BrickCacheCuda cache_;
   SpBuffersCuda buffers_;
-  DeviceBuffer<GraphFrame> frame_;
   DeviceBuffer<GraphLoop> loop_;
   cudaGraphExec_t exec_;
   GpuTimer timer_;

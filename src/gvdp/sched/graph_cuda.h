@@ -12,7 +12,7 @@
 
 namespace gvdp {
 
-// What the graph's kernels read per frame (uploaded before each launch).
+// What the graph's kernels read per frame (uploadGraphFrame before each launch).
 struct GraphFrame {
   FrameSetup frame;
   CacheView cache;
@@ -31,9 +31,12 @@ struct GraphLoop {
   uint32_t* live;  // rays of the next render pass (after the first, tiled one)
   uint32_t* next;  // rays stopped in the current pass
   uint32_t liveCount, nextCount, passes, stop, exit, failedBefore;
+  uint32_t cursor;  // next item of the current pass (render: per warp; production: per block)
 };
 
-// Builds and instantiates the graph for this device; the kernels read *frame and *loop.
-cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop);
+// Builds and instantiates the graph for this device; its kernels read the uploaded frame and
+// *loop.
+cudaGraphExec_t buildSpGraph(GraphLoop* loop);
+void uploadGraphFrame(const GraphFrame& frame);
 
 }  // namespace gvdp

@@ -1,6 +1,7 @@
-// Kernels of the graph scheduler: the sp passes written as grid-stride loops over counts in
-// device memory (a graph's launch sizes are fixed), and the two one-thread control kernels that
-// swap the live-ray lists and set the WHILE node's condition (cudaGraphSetConditional).
+// Kernels of the graph scheduler: the sp passes as resident grids whose warps (render) or blocks
+// (production) claim their next items from a cursor, over counts in device memory (a graph's
+// launch sizes are fixed), and the two one-thread control kernels that swap the live-ray lists
+// and set the WHILE node's condition (cudaGraphSetConditional).
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/compaction.cuh"
@@ -12,65 +13,76 @@
 namespace gvdp {
 namespace {
 
+// The frame, in constant memory (as kernel parameters are): uniform reads are served by the
+// constant cache, and no store of the kernels can alias it.
+__constant__ GraphFrame graphFrame;
+
 constexpr int RENDER_BLOCK = 128;
 
 // Pass 0 covers the screen in 8x8 tiles from fresh states; later passes the live list.
-__global__ void __launch_bounds__(RENDER_BLOCK)
-    graphRenderKernel(const GraphFrame* __restrict__ g, GraphLoop* loop) {
+__global__ void __launch_bounds__(RENDER_BLOCK) graphRenderKernel(GraphLoop* loop) {
   BlockTimer timer(TaskKind::Render);
-  const FrameSetup& f = g->frame;
+  const FrameSetup& f = graphFrame.frame;
   bool tiled = loop->passes == 0;
   uint32_t count = tiled ? static_cast<uint32_t>(tileCount(f) * TILE * TILE) : loop->liveCount;
   const uint32_t* live = loop->live;
   uint32_t* next = loop->next;
-  uint32_t stride = gridDim.x * blockDim.x;
-  for (uint32_t base = blockIdx.x * blockDim.x; base < count; base += stride) {
-    uint32_t i = base + threadIdx.x;
+  int lane = static_cast<int>(threadIdx.x & 31);
+  for (;;) {
+    uint32_t base = 0;
+    if (lane == 0) base = atomicAdd(&loop->cursor, 32u);
+    base = __shfl_sync(0xffffffffu, base, 0);
+    if (base >= count) return;
+    uint32_t i = base + static_cast<uint32_t>(lane);
     int pixel = -1;
     if (i < count) pixel = tiled ? tiledPixel(f, static_cast<int>(i)) : static_cast<int>(live[i]);
     bool stopped = false;
     if (pixel >= 0) {
-      if (tiled) g->payload[pixel] = initialRayState();
-      stopped = renderRay(f, g->cache, g->pool, g->payload, pixel);
+      if (tiled) graphFrame.payload[pixel] = initialRayState();
+      stopped = renderRay(f, graphFrame.cache, graphFrame.pool, graphFrame.payload, pixel);
     }
     appendStopped(stopped, static_cast<uint32_t>(pixel), next, &loop->nextCount);
   }
 }
 
-__global__ void afterRenderKernel(const GraphFrame* g, GraphLoop* loop,
-                                  cudaGraphConditionalHandle handle) {
+__global__ void afterRenderKernel(GraphLoop* loop, cudaGraphConditionalHandle handle) {
   uint32_t* t = loop->live;
   loop->live = loop->next;
   loop->next = t;
   loop->liveCount = loop->nextCount;
   loop->nextCount = 0;
+  loop->cursor = 0;
   ++loop->passes;
   if (loop->liveCount == 0) {
     loop->stop = 1;
     cudaGraphSetConditional(handle, 0);
   } else {
-    loop->failedBefore = g->cache.counters[COUNTER_FAILED];
+    loop->failedBefore = graphFrame.cache.counters[COUNTER_FAILED];
   }
 }
 
-__global__ void __launch_bounds__(PRODUCE_BLOCK)
-    graphProduceKernel(const GraphFrame* __restrict__ g, const GraphLoop* loop) {
+__global__ void __launch_bounds__(PRODUCE_BLOCK) graphProduceKernel(GraphLoop* loop) {
   BlockTimer timer(TaskKind::Produce);
   if (loop->stop) return;
-  const CacheView& cache = g->cache;
+  const CacheView& cache = graphFrame.cache;
   uint32_t requests = cache.counters[COUNTER_REQUESTS];
   requests = requests < cache.requestCapacity ? requests : cache.requestCapacity;
-  for (uint32_t b = blockIdx.x; b < requests; b += gridDim.x)
-    produceBrickBlock(g->frame.scene, cache, g->pool, cache.requests[b]);
+  __shared__ uint32_t b;
+  for (;;) {
+    if (threadIdx.x == 0) b = atomicAdd(&loop->cursor, 1u);
+    __syncthreads();
+    if (b >= requests) return;
+    produceBrickBlock(graphFrame.frame.scene, cache, graphFrame.pool, cache.requests[b]);
+  }
 }
 
-__global__ void afterProduceKernel(const GraphFrame* g, GraphLoop* loop,
-                                   cudaGraphConditionalHandle handle) {
+__global__ void afterProduceKernel(GraphLoop* loop, cudaGraphConditionalHandle handle) {
   if (loop->stop) return;
-  g->cache.counters[COUNTER_REQUESTS] = 0;
-  uint32_t exit = g->cache.counters[COUNTER_FAILED] != loop->failedBefore ? GRAPH_FAILED
-                  : loop->passes >= static_cast<uint32_t>(SP_MAX_PASSES)  ? GRAPH_MAX_PASSES
-                                                                          : GRAPH_DONE;
+  graphFrame.cache.counters[COUNTER_REQUESTS] = 0;
+  loop->cursor = 0;
+  uint32_t exit = graphFrame.cache.counters[COUNTER_FAILED] != loop->failedBefore ? GRAPH_FAILED
+                  : loop->passes >= static_cast<uint32_t>(SP_MAX_PASSES)          ? GRAPH_MAX_PASSES
+                                                                                  : GRAPH_DONE;
   if (exit != GRAPH_DONE) {
     loop->exit = exit;
     loop->stop = 1;
@@ -89,7 +101,11 @@ int residentBlocks(Kernel kernel, int threads) {
 
 }  // namespace
 
-cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop) {
+void uploadGraphFrame(const GraphFrame& frame) {
+  GVDP_CUDA_CHECK(cudaMemcpyToSymbolAsync(graphFrame, &frame, sizeof frame));
+}
+
+cudaGraphExec_t buildSpGraph(GraphLoop* loop) {
   int renderBlocks = residentBlocks(graphRenderKernel, RENDER_BLOCK);
   int produceBlocks = residentBlocks(graphProduceKernel, PRODUCE_BLOCK);
   cudaGraph_t graph = nullptr;
@@ -109,10 +125,10 @@ cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop) {
   GVDP_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
   GVDP_CUDA_CHECK(cudaStreamBeginCaptureToGraph(stream, body, nullptr, nullptr, 0,
                                                 cudaStreamCaptureModeRelaxed));
-  graphRenderKernel<<<renderBlocks, RENDER_BLOCK, 0, stream>>>(frame, loop);
-  afterRenderKernel<<<1, 1, 0, stream>>>(frame, loop, handle);
-  graphProduceKernel<<<produceBlocks, PRODUCE_BLOCK, 0, stream>>>(frame, loop);
-  afterProduceKernel<<<1, 1, 0, stream>>>(frame, loop, handle);
+  graphRenderKernel<<<renderBlocks, RENDER_BLOCK, 0, stream>>>(loop);
+  afterRenderKernel<<<1, 1, 0, stream>>>(loop, handle);
+  graphProduceKernel<<<produceBlocks, PRODUCE_BLOCK, 0, stream>>>(loop);
+  afterProduceKernel<<<1, 1, 0, stream>>>(loop, handle);
   GVDP_CUDA_CHECK(cudaStreamEndCapture(stream, &body));
   GVDP_CUDA_CHECK(cudaStreamDestroy(stream));
 
