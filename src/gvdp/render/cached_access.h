@@ -11,16 +11,22 @@
 
 namespace gvdp {
 
-// sp's answer to a won CAS: queue the brick for the next production pass.
+// Claims a MISSING brick for production: true for the one thread whose CAS won.
+GVDP_HD GVDP_INLINE bool claimBrick(uint32_t* entry) {
+  return atomicCas32(entry, ENTRY_MISSING, ENTRY_IN_PRODUCTION) == ENTRY_MISSING;
+}
+
+// sp's answer to a MISSING brick: claim it and queue it for the next production pass.
 struct QueueRequest {
-  GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t*) const {
-    requestBrick(cache, level, g);
+  GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
+    if (claimBrick(entry)) requestBrick(cache, level, g);
   }
 };
 
 // Pool provides: Vec4f sample(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
 // coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates.
-// OnMiss(cache, level, globalBrick, entry) runs in the thread that won MISSING -> IN_PRODUCTION.
+// OnMiss(cache, level, globalBrick, entry) runs when the entry was MISSING: it claims the brick
+// with a CAS from MISSING (one thread wins) and the winner starts its production.
 template <class Pool, class OnMiss = QueueRequest>
 struct CachedAccess {
   const CacheView& cache;
@@ -63,9 +69,7 @@ struct CachedAccess {
       if (isSlot(ea) && degraded()) return resident(ea, up, a);
     }
     if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
-    if (e == ENTRY_MISSING &&
-        atomicCas32(entry, ENTRY_MISSING, ENTRY_IN_PRODUCTION) == ENTRY_MISSING)
-      onMiss(cache, level, g, entry);
+    if (e == ENTRY_MISSING) onMiss(cache, level, g, entry);
     stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};
   }

@@ -75,7 +75,7 @@ template <class Launcher>
 struct LaunchProduction {
   Launcher* launcher;
   GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
-    launcher->produce(BrickKey{g, level}, entry);
+    if (claimBrick(entry)) launcher->produce(BrickKey{g, level}, entry);
   }
 };
 
