@@ -192,9 +192,16 @@ GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uin
   return false;  // closed: the brick was published before the list closed
 }
 
-// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false).
-template <class Pool>
-GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel) {
+struct ParkOne {
+  GVDP_HD bool operator()(const PtContext& ctx, uint32_t pixel, const uint32_t* stopEntry) const {
+    return parkRay(ctx, pixel, stopEntry);
+  }
+};
+
+// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false). Park is
+// parkRay, or on the GPU a warp-aggregated version of it (pt_kernels.cu).
+template <class Pool, class Park = ParkOne>
+GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, Park park = {}) {
   const FrameSetup& f = ctx.frame;
   Ray ray = f.primaryRay(static_cast<int>(pixel) % f.width, static_cast<int>(pixel) / f.width);
   for (;;) {
@@ -203,7 +210,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel) {
     MarchResult r = march(ray, f.lod, s, access);
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) return true;
-    if (parkRay(ctx, pixel, access.stopEntry)) return false;
+    if (park(ctx, pixel, access.stopEntry)) return false;
   }
 }
 
