@@ -78,6 +78,8 @@ TEST(Bench, CommandWritesItsOutputsAndRejectsBadLists) {
   EXPECT_EQ(test::runGvdp("bench --backend cpu --scenes moon --out " + dir + "/x.json").status, 2);
   EXPECT_EQ(
       test::runGvdp("bench --backend cpu --schedulers direct --out " + dir + "/x.json").status, 2);
+  EXPECT_EQ(test::runGvdp("bench --backend cpu --schedulers graph --out " + dir + "/x.json").status,
+            2);
   std::filesystem::remove_all(dir);
 }
 

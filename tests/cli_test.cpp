@@ -36,6 +36,22 @@ TEST(Cli, BadInputIsOneLineNamingTheValueWithStatus2) {
   expectInputError("render --backend cpu --out /proc/gvdp_cannot_be_here",
                    "/proc/gvdp_cannot_be_here");
   expectInputError("frobnicate", "frobnicate");
+  expectInputError("render --backend cpu --scheduler graph" + out, "'graph'");
+}
+
+TEST(Cli, PtRenderReportsItsTasksInStats) {
+  std::string dir = test::tempDir("cli_pt");
+  test::CommandResult r = test::runGvdp(
+      "render --backend cpu --scheduler pt --scene perlin --width 40 --height 24 --frames 1 "
+      "--out " +
+      dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("relaunched rays"), std::string::npos) << r.output;
+  std::ifstream in(dir + "/stats.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GT(j["frames"][0]["launches"].get<int>(), 0);
+  EXPECT_EQ(j["frames"][0]["unfinished_pixels"], 0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, RenderWritesFramesAndStats) {

@@ -25,6 +25,7 @@ TEST_P(PtCpuTest, MatchesSpBitForBitOnA20FrameWalkthrough) {
     EXPECT_FALSE(pt.stats[f].degraded);
   }
   EXPECT_GT(pt.stats[0].launches, 0u);
+  EXPECT_GT(pt.stats[0].relaunchedRays, 0u) << "parked rays come back through the ray queue";
   EXPECT_GT(pt.stats[0].cache.produced + pt.stats[0].cache.empty, 0u);
 }
 

@@ -73,6 +73,8 @@ SequenceOptions toOptions(const RenderFlags& f) {
   bool gpu = f.backend == "auto" ? cudaDeviceAvailable() : parseBackend(f.backend) == Backend::Cuda;
   o.scheduler.backend = gpu ? Backend::Cuda : Backend::Cpu;
   o.scheduler.kind = parseScheduler(f.scheduler);
+  GVDP_INPUT_CHECK(o.scheduler.kind != SchedulerKind::Graph || gpu,
+                   "scheduler 'graph' runs on the cuda backend only (a CUDA graph of the sp loop)");
   o.frames = f.frames != UNSET ? f.frames : (gpu ? 24 : 6);
   o.width = f.width != UNSET ? f.width : (gpu ? 1500 : 160);
   o.height = f.height != UNSET ? f.height : (gpu ? 1000 : 100);
@@ -146,7 +148,11 @@ int runRender(const RenderFlags& flags) {
                 s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
                 static_cast<unsigned long long>(s.cache.produced),
                 static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "");
-    if (s.launches)
+    if (s.launches && o.scheduler.kind == SchedulerKind::Pt)
+      std::printf("           tasks %llu  relaunched rays %llu\n",
+                  static_cast<unsigned long long>(s.launches),
+                  static_cast<unsigned long long>(s.relaunchedRays));
+    else if (s.launches)
       std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
                   static_cast<unsigned long long>(s.launches),
                   static_cast<unsigned long long>(s.launchFailures),
@@ -237,6 +243,8 @@ int runBenchCommand(const BenchFlags& f) {
     SchedulerKind kind = parseScheduler(k);
     GVDP_INPUT_CHECK(kind != SchedulerKind::Direct, "bad --schedulers '", k,
                      "' (direct has no cache to benchmark; use sp, dp, pt, graph)");
+    GVDP_INPUT_CHECK(kind != SchedulerKind::Graph || gpu, "bad --schedulers '", k,
+                     "' (graph runs on the cuda backend only)");
     o.schedulers.push_back(kind);
   }
   GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),

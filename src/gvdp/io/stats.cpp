@@ -39,6 +39,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"launch_failures", f.launchFailures},
                     {"deferred_productions", f.deferred},
                     {"swept_pixels", f.sweptPixels},
+                    {"relaunched_rays", f.relaunchedRays},
                     {"degraded", f.degraded}});
   j["frames"] = list;
   return j.dump(1);

@@ -32,6 +32,7 @@ class PtCpu final : public Scheduler {
     stats.cache = cache_.frameStats();
     stats.degraded = cache_.degraded() || stats.cache.failed != 0;
     stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
+    stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
     stats.ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     timelineEnd(stats);

@@ -37,6 +37,7 @@ class PtCuda final : public Scheduler {
     GVDP_CUDA_CHECK(
         cudaMemcpy(c.data(), counters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost));
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
+    stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
     stats.cache = cache_.frameStats();
     stats.degraded = cache_.degraded() || stats.cache.failed != 0;
     return stats;

@@ -33,6 +33,7 @@ struct FrameStats {
   uint64_t launchFailures = 0;  // dp: launches refused (pending-launch buffer full); pt: no id
   uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)
   int64_t sweptPixels = 0;      // dp: rays the device-side schedule left to the sp sweep
+  uint64_t relaunchedRays = 0;  // pt: parked rays a production queued again
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline
 };
