@@ -224,6 +224,45 @@ GVDP_HD GVDP_INLINE void finishProductionTask(const PtContext& ctx, uint32_t id)
   releaseTaskId(ctx, id);
 }
 
+// Where a backend keeps pt's buffers: rings of rayCapacity (pixels) and taskCapacity (task ids)
+// slots, the task table and wait lists, PT_COUNTER_COUNT * PT_COUNTER_STRIDE counters.
+struct PtBuffers {
+  uint64_t *raySlots, *taskSlots, *freeSlots;
+  uint32_t rayCapacity, taskCapacity;
+  BrickKey* taskKey;
+  uint32_t *waitHead, *waitNext, *counters;
+};
+
+// The frame's context over a backend's buffers.
+inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayState* payload,
+                               const PtBuffers& b) {
+  PtContext ctx{};
+  ctx.frame = f;
+  ctx.cache = cache;
+  ctx.cache.degradeOnFailure = 1;
+  ctx.payload = payload;
+  ctx.counters = b.counters;
+  auto ring = [&](uint64_t* slots, uint32_t capacity, PtCounter head) {
+    return Ring{slots, capacity - 1, ctx.counter(head), ctx.counter(PtCounter(head + 1)),
+                ctx.counter(PtCounter(head + 2))};
+  };
+  ctx.rays = ring(b.raySlots, b.rayCapacity, PT_RAY_HEAD);
+  ctx.tasks = ring(b.taskSlots, b.taskCapacity, PT_TASK_HEAD);
+  ctx.freeIds = ring(b.freeSlots, b.taskCapacity, PT_FREE_HEAD);
+  ctx.taskKey = b.taskKey;
+  ctx.waitHead = b.waitHead;
+  ctx.waitNext = b.waitNext;
+  ctx.itemCount = static_cast<uint32_t>(tileCount(f) * TILE * TILE);
+  return ctx;
+}
+
+// The counters at the start of a frame: every ray live, every one of `ids` task ids free.
+inline void initialPtCounters(uint32_t* c, uint32_t pixels, uint32_t ids) {
+  for (int i = 0; i < PT_COUNTER_COUNT * PT_COUNTER_STRIDE; ++i) c[i] = 0;
+  c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = ids;
+  c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = pixels;
+}
+
 // A ring capacity for at most n items at once: a power of two > n.
 GVDP_HD GVDP_INLINE uint32_t ringCapacity(uint32_t n) {
   uint32_t c = 1;

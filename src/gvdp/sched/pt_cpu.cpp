@@ -64,27 +64,13 @@ class PtCpu final : public Scheduler {
     taskKey_.resize(ids);
     waitHead_.assign(ids, LIST_CLOSED);
     waitNext_.assign(n, LIST_END);
-    counters_.assign(PT_COUNTER_COUNT * PT_COUNTER_STRIDE, 0u);
-    PtContext ctx{};
-    ctx.frame = f;
-    ctx.cache = cache_.view();
-    ctx.cache.degradeOnFailure = 1;
-    ctx.payload = payload_.data();
-    ctx.counters = counters_.data();
-    auto ring = [&](std::vector<uint64_t>& slots, PtCounter head, PtCounter tail, PtCounter ready) {
-      return Ring{slots.data(), static_cast<uint32_t>(slots.size() - 1), ctx.counter(head),
-                  ctx.counter(tail), ctx.counter(ready)};
-    };
-    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL, PT_RAY_READY);
-    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL, PT_TASK_READY);
-    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL, PT_FREE_READY);
-    *ctx.counter(PT_FREE_TAIL) = *ctx.counter(PT_FREE_READY) = ids;
-    *ctx.counter(PT_LIVE_RAYS) = n;
-    ctx.taskKey = taskKey_.data();
-    ctx.waitHead = waitHead_.data();
-    ctx.waitNext = waitNext_.data();
-    ctx.itemCount = static_cast<uint32_t>(tileCount(f) * TILE * TILE);
-    return ctx;
+    counters_.resize(PT_COUNTER_COUNT * PT_COUNTER_STRIDE);
+    initialPtCounters(counters_.data(), n, ids);
+    return makePtContext(
+        f, cache_.view(), payload_.data(),
+        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
+         static_cast<uint32_t>(raySlots_.size()), static_cast<uint32_t>(taskSlots_.size()),
+         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data()});
   }
 
   // One worker: production first, then relaunched rays, then fresh tiles, until no ray is left.

@@ -70,29 +70,15 @@ class PtCuda final : public Scheduler {
   PtContext prepare(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
     GVDP_CUDA_CHECK(cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));
-    std::vector<uint32_t> c(counters_.size(), 0u);
-    c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = ids_;
-    c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = n;
+    std::vector<uint32_t> c(counters_.size());
+    initialPtCounters(c.data(), n, ids_);
     GVDP_CUDA_CHECK(
         cudaMemcpy(counters_.data(), c.data(), counters_.bytes(), cudaMemcpyHostToDevice));
-    PtContext ctx{};
-    ctx.frame = f;
-    ctx.cache = cache_.view();
-    ctx.cache.degradeOnFailure = 1;
-    ctx.payload = buffers_.payload.data();
-    ctx.counters = counters_.data();
-    auto ring = [&](DeviceBuffer<uint64_t>& slots, PtCounter head, PtCounter tail,
-                    PtCounter ready) {
-      return Ring{slots.data(), static_cast<uint32_t>(slots.size() - 1), ctx.counter(head),
-                  ctx.counter(tail), ctx.counter(ready)};
-    };
-    ctx.rays = ring(raySlots_, PT_RAY_HEAD, PT_RAY_TAIL, PT_RAY_READY);
-    ctx.tasks = ring(taskSlots_, PT_TASK_HEAD, PT_TASK_TAIL, PT_TASK_READY);
-    ctx.freeIds = ring(freeSlots_, PT_FREE_HEAD, PT_FREE_TAIL, PT_FREE_READY);
-    ctx.taskKey = taskKey_.data();
-    ctx.waitHead = waitHead_.data();
-    ctx.waitNext = waitNext_.data();
-    ctx.itemCount = static_cast<uint32_t>(tileCount(f) * TILE * TILE);
+    PtContext ctx = makePtContext(
+        f, cache_.view(), buffers_.payload.data(),
+        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
+         static_cast<uint32_t>(raySlots_.size()), static_cast<uint32_t>(taskSlots_.size()),
+         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data()});
     launchPtRingsInit(ctx, ids_);
     return ctx;
   }
