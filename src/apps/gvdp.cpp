@@ -18,6 +18,7 @@
 #include "gvdp/io/stats.h"
 #include "gvdp/profile/timeline_export.h"
 #include "gvdp/render/march.h"
+#include "gvdp/sched/pt_body.h"
 
 namespace gvdp {
 namespace {
@@ -290,6 +291,14 @@ int runScenes() {
   return 0;
 }
 
+// pt's rings, task table and wait lists (pt_cuda.cpp), with task ids for every pixel and about
+// 4096 worker warps.
+size_t ptQueueBytes(size_t pixels) {
+  uint32_t n = static_cast<uint32_t>(pixels), ids = n + 4096;
+  return (ringCapacity(n) + 2 * size_t{ringCapacity(ids)}) * sizeof(uint64_t) +
+         ids * (sizeof(BrickKey) + sizeof(uint32_t)) + pixels * sizeof(uint32_t);
+}
+
 // Bytes of every structure for a configuration, computed as the caches allocate them.
 void printMemory(const char* label, int width, int height, uint32_t poolBricks) {
   float pixelAngle = 2.0f * std::tan(0.5f * DEFAULT_FOV_DEGREES * PI / 180.0f) / width;
@@ -303,7 +312,8 @@ void printMemory(const char* label, int width, int height, uint32_t poolBricks) 
                     {"request_queue", pixels * sizeof(BrickKey)},
                     {"ray_payload", pixels * sizeof(RayState)},
                     {"live_ray_lists_and_image", pixels * 3 * sizeof(uint32_t)},
-                    {"dp_ray_locks", pixels * sizeof(uint32_t)}};
+                    {"dp_ray_locks", pixels * sizeof(uint32_t)},
+                    {"pt_queues_and_wait_lists", ptQueueBytes(pixels)}};
   size_t total = 0;
   std::printf("memory at %s (%dx%d, clipmap %zu^3 x %d levels, pool %u bricks):\n", label, width,
               height, w, DEFAULT_LEVELS, poolBricks);
@@ -311,7 +321,7 @@ void printMemory(const char* label, int width, int height, uint32_t poolBricks) 
     std::printf("  %-28s %10.1f MB\n", i.name.c_str(), static_cast<double>(i.bytes) / 1e6);
     total += i.bytes;
   }
-  std::printf("  %-28s %10.1f MB (dp adds CUDA's pending-launch buffer, reported by render)\n",
+  std::printf("  %-28s %10.1f MB (all schedulers' parts; dp adds CUDA's pending-launch buffer)\n",
               "total", static_cast<double>(total) / 1e6);
 }
 

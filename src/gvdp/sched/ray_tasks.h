@@ -1,4 +1,4 @@
-// Per-ray and per-brick task bodies shared by the cached schedulers (sp, and later dp, pt) on
+// Per-ray and per-brick task bodies shared by the cached schedulers (sp, graph, dp, pt) on
 // both backends: the first render pass in 8x8 pixel tiles (so that a warp holds a compact
 // 8x4 block), a render task resuming a saved ray, production of one brick sample, and the final
 // resolve that counts unfinished pixels.
