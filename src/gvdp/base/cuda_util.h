@@ -84,4 +84,15 @@ class GpuTimer {
   cudaEvent_t start_{}, stop_{};
 };
 
+// Blocks of `kernel` (`threads` each) that fit on the device at once: the grid of a persistent
+// or grid-claiming kernel.
+template <class Kernel>
+int residentBlocks(Kernel kernel, int threads) {
+  int device = 0, sms = 0, perSm = 0;
+  GVDP_CUDA_CHECK(cudaGetDevice(&device));
+  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  GVDP_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, kernel, threads, 0));
+  return sms * (perSm > 0 ? perSm : 1);
+}
+
 }  // namespace gvdp

@@ -90,15 +90,6 @@ __global__ void afterProduceKernel(GraphLoop* loop, cudaGraphConditionalHandle h
   }
 }
 
-template <class Kernel>
-int residentBlocks(Kernel kernel, int threads) {
-  int device = 0, sms = 0, perSm = 0;
-  GVDP_CUDA_CHECK(cudaGetDevice(&device));
-  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  GVDP_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, kernel, threads, 0));
-  return sms * (perSm > 0 ? perSm : 1);
-}
-
 }  // namespace
 
 void uploadGraphFrame(const GraphFrame& frame) {

@@ -122,11 +122,16 @@ struct PtContext {
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
 };
 
-GVDP_HD GVDP_INLINE BrickKey loadTaskKey(const PtContext& ctx, uint32_t id) {
-  const uint32_t* k = reinterpret_cast<const uint32_t*>(&ctx.taskKey[id]);
+// A key another warp or thread may have written (a task's, or a block's production's).
+GVDP_HD GVDP_INLINE BrickKey loadBrickKey(const BrickKey* key) {
+  const uint32_t* k = reinterpret_cast<const uint32_t*>(key);
   return {{static_cast<int>(loadRelaxed32(k)), static_cast<int>(loadRelaxed32(k + 1)),
            static_cast<int>(loadRelaxed32(k + 2))},
           static_cast<int>(loadRelaxed32(k + 3))};
+}
+
+GVDP_HD GVDP_INLINE BrickKey loadTaskKey(const PtContext& ctx, uint32_t id) {
+  return loadBrickKey(&ctx.taskKey[id]);
 }
 
 // Closes a task's wait list (after its brick is published) and returns its first ray: walk the

@@ -107,10 +107,6 @@ struct BlockProductions {
   uint32_t open;                // bit w: warp w's production has chunks to claim
 };
 
-__device__ uint32_t volatileLoad(const uint32_t* p) {
-  return *reinterpret_cast<const volatile uint32_t*>(p);
-}
-
 // Claims and computes chunks of warp `owner`'s production until none is left.
 __device__ void produceChunks(const PtContext& ctx, BlockProductions& bp, int owner, int lane) {
   for (;;) {
@@ -120,8 +116,7 @@ __device__ void produceChunks(const PtContext& ctx, BlockProductions& bp, int ow
     if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return;
     // The last chunk is taken: no more help (helpers would spin on an exhausted production).
     if (lane == 0 && c == PRODUCE_CHUNKS - 1) atomicAnd(&bp.open, ~(1u << owner));
-    const volatile int* k = reinterpret_cast<const volatile int*>(&bp.key[owner]);
-    BrickKey key{{k[0], k[1], k[2]}, k[3]};
+    BrickKey key = loadBrickKey(&bp.key[owner]);
     bool nonEmpty = false;
     int end = min((static_cast<int>(c) + 1) * PRODUCE_CHUNK, BRICK_SAMPLE_COUNT);
     for (int s = static_cast<int>(c) * PRODUCE_CHUNK + lane; s < end; s += 32) {
@@ -157,11 +152,11 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, uint32_
   __syncwarp();
   produceChunks(ctx, bp, warp, lane);
   if (lane == 0) {
-    while (volatileLoad(&bp.done[warp]) < static_cast<uint32_t>(PRODUCE_CHUNKS)) __nanosleep(20);
+    while (loadRelaxed32(&bp.done[warp]) < static_cast<uint32_t>(PRODUCE_CHUNKS)) __nanosleep(20);
     __threadfence_block();
   }
   __syncwarp();
-  bool empty = volatileLoad(&bp.nonEmpty[warp]) == 0;
+  bool empty = loadRelaxed32(&bp.nonEmpty[warp]) == 0;
   const Rgba8* stage = bp.stage[warp];
   uint32_t slot = 0;
   if (lane == 0) slot = empty ? MAX_SLOTS : takeFreeSlot(ctx.cache);
@@ -246,7 +241,7 @@ __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
       continue;
     }
     // Nothing else to do: help a production of this block (the tail of the frame), or idle.
-    if (lane == 0) open = volatileLoad(&bp.open) & ~(1u << warp);
+    if (lane == 0) open = loadRelaxed32(&bp.open) & ~(1u << warp);
     open = __shfl_sync(FULL_MASK, open, 0);
     if (open) {
       span.begin(TaskKind::Produce);
@@ -275,12 +270,7 @@ void initRing(const Ring& ring, uint32_t filled) {
 }  // namespace
 
 int ptWorkerBlocks() {
-  int device = 0, sms = 0, perSm = 0;
-  GVDP_CUDA_CHECK(cudaGetDevice(&device));
-  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  GVDP_CUDA_CHECK(
-      cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, ptWorkerKernel, PT_BLOCK, 0));
-  return sms * (perSm > 0 ? perSm : 1);
+  return residentBlocks(ptWorkerKernel, PT_BLOCK);
 }
 
 void launchPtRingsInit(const PtContext& ctx, uint32_t ids) {
