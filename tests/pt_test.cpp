@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <numeric>
 #include <thread>
 #include <vector>
@@ -130,6 +131,21 @@ TEST_P(GpuPtTest, TinyPoolFinishesEveryPixel) {
   for (SchedulerKind kind : {SchedulerKind::Pt, SchedulerKind::Graph}) {
     Renders a = renderRun(sceneName(GetParam()), {Backend::Cuda, kind, 64}, 3, 320, 200);
     for (const FrameStats& s : a.stats) EXPECT_EQ(s.unfinishedPixels, 0);
+  }
+}
+
+// The loop body driven by the host (GVDP_GRAPH_LOOP=host, the mode compute-sanitizer's racecheck
+// and synccheck run graph's kernels in) renders what sp renders.
+TEST(GpuGraphTest, HostDrivenLoopMatchesSpBitForBit) {
+  GVDP_REQUIRE_GPU();
+  setenv("GVDP_GRAPH_LOOP", "host", 1);
+  Renders g = renderRun("forest", {Backend::Cuda, SchedulerKind::Graph}, 8, 320, 200);
+  unsetenv("GVDP_GRAPH_LOOP");
+  Renders sp = renderRun("forest", {Backend::Cuda, SchedulerKind::Sp}, 8, 320, 200);
+  for (int f = 0; f < 8; ++f) {
+    EXPECT_EQ(sp.images[f].pixels, g.images[f].pixels) << "frame " << f;
+    EXPECT_EQ(sp.stats[f].passes, g.stats[f].passes) << "frame " << f;
+    EXPECT_EQ(g.stats[f].unfinishedPixels, 0);
   }
 }
 

@@ -1,17 +1,30 @@
-#include "gvdp/sched/graph_cuda.h"
+#include <cstdlib>
+#include <string>
+
 #include "gvdp/sched/graph.h"
+#include "gvdp/sched/graph_cuda.h"
 #include "gvdp/sched/sp.h"
 #include "gvdp/sched/sp_loop_cuda.h"
 
 namespace gvdp {
 namespace {
 
+// GVDP_GRAPH_LOOP=host: the host repeats the loop's body (for compute-sanitizer, graph_cuda.h).
+GraphDriver graphDriverFromEnvironment() {
+  const char* v = std::getenv("GVDP_GRAPH_LOOP");
+  std::string value = v ? v : "device";
+  GVDP_INPUT_CHECK(value == "device" || value == "host", "bad GVDP_GRAPH_LOOP '", value,
+                   "' (expected device or host)");
+  return value == "host" ? GraphDriver::Host : GraphDriver::Device;
+}
+
 class GraphCuda final : public Scheduler {
  public:
   explicit GraphCuda(const SchedulerOptions& o)
       : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
         loop_(1),
-        exec_(buildSpGraph(loop_.data())) {}
+        driver_(graphDriverFromEnvironment()),
+        exec_(buildSpGraph(loop_.data(), driver_)) {}
   ~GraphCuda() override { cudaGraphExecDestroy(exec_); }
 
   FrameStats render(const FrameSetup& f, Image& out) override {
@@ -26,8 +39,10 @@ class GraphCuda final : public Scheduler {
     GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0, 0};
     uploadGraphFrame(g);
     GVDP_CUDA_CHECK(cudaMemcpyAsync(loop_.data(), &loop, sizeof loop, cudaMemcpyHostToDevice));
-    GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, nullptr));
-    GVDP_CUDA_CHECK(cudaMemcpy(&loop, loop_.data(), sizeof loop, cudaMemcpyDeviceToHost));
+    do {  // once, unless the host drives the loop
+      GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, nullptr));
+      GVDP_CUDA_CHECK(cudaMemcpy(&loop, loop_.data(), sizeof loop, cudaMemcpyDeviceToHost));
+    } while (driver_ == GraphDriver::Host && !loop.stop);
     stats.passes = static_cast<int>(loop.passes);
     if (loop.exit != GRAPH_DONE) finishOnHost(f, loop, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
@@ -59,6 +74,7 @@ class GraphCuda final : public Scheduler {
   BrickCacheCuda cache_;
   SpBuffersCuda buffers_;
   DeviceBuffer<GraphLoop> loop_;
+  GraphDriver driver_;
   cudaGraphExec_t exec_;
   GpuTimer timer_;
 };

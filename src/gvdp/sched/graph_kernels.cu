@@ -45,7 +45,18 @@ __global__ void __launch_bounds__(RENDER_BLOCK) graphRenderKernel(GraphLoop* loo
   }
 }
 
-__global__ void afterRenderKernel(GraphLoop* loop, cudaGraphConditionalHandle handle) {
+// The WHILE node's condition; none when the host drives the loop (GraphDriver::Host).
+struct WhileCondition {
+  cudaGraphConditionalHandle handle;
+  bool exists;
+};
+
+__device__ void stopLoop(GraphLoop* loop, WhileCondition condition) {
+  loop->stop = 1;
+  if (condition.exists) cudaGraphSetConditional(condition.handle, 0);
+}
+
+__global__ void afterRenderKernel(GraphLoop* loop, WhileCondition condition) {
   uint32_t* t = loop->live;
   loop->live = loop->next;
   loop->next = t;
@@ -54,8 +65,7 @@ __global__ void afterRenderKernel(GraphLoop* loop, cudaGraphConditionalHandle ha
   loop->cursor = 0;
   ++loop->passes;
   if (loop->liveCount == 0) {
-    loop->stop = 1;
-    cudaGraphSetConditional(handle, 0);
+    stopLoop(loop, condition);
   } else {
     loop->failedBefore = graphFrame.cache.counters[COUNTER_FAILED];
   }
@@ -76,7 +86,7 @@ __global__ void __launch_bounds__(PRODUCE_BLOCK) graphProduceKernel(GraphLoop* l
   }
 }
 
-__global__ void afterProduceKernel(GraphLoop* loop, cudaGraphConditionalHandle handle) {
+__global__ void afterProduceKernel(GraphLoop* loop, WhileCondition condition) {
   if (loop->stop) return;
   graphFrame.cache.counters[COUNTER_REQUESTS] = 0;
   loop->cursor = 0;
@@ -85,8 +95,7 @@ __global__ void afterProduceKernel(GraphLoop* loop, cudaGraphConditionalHandle h
                                                                                   : GRAPH_DONE;
   if (exit != GRAPH_DONE) {
     loop->exit = exit;
-    loop->stop = 1;
-    cudaGraphSetConditional(handle, 0);
+    stopLoop(loop, condition);
   }
 }
 
@@ -96,30 +105,34 @@ void uploadGraphFrame(const GraphFrame& frame) {
   GVDP_CUDA_CHECK(cudaMemcpyToSymbolAsync(graphFrame, &frame, sizeof frame));
 }
 
-cudaGraphExec_t buildSpGraph(GraphLoop* loop) {
+cudaGraphExec_t buildSpGraph(GraphLoop* loop, GraphDriver driver) {
   int renderBlocks = residentBlocks(graphRenderKernel, RENDER_BLOCK);
   int produceBlocks = residentBlocks(graphProduceKernel, PRODUCE_BLOCK);
   cudaGraph_t graph = nullptr;
   GVDP_CUDA_CHECK(cudaGraphCreate(&graph, 0));
-  cudaGraphConditionalHandle handle = 0;
-  GVDP_CUDA_CHECK(cudaGraphConditionalHandleCreate(&handle, graph, 1, cudaGraphCondAssignDefault));
-  cudaGraphNodeParams params{};
-  params.type = cudaGraphNodeTypeConditional;
-  params.conditional.handle = handle;
-  params.conditional.type = cudaGraphCondTypeWhile;
-  params.conditional.size = 1;
-  cudaGraphNode_t node = nullptr;
-  GVDP_CUDA_CHECK(cudaGraphAddNode(&node, graph, nullptr, nullptr, 0, &params));
-  cudaGraph_t body = params.conditional.phGraph_out[0];
+  WhileCondition condition{0, driver == GraphDriver::Device};
+  cudaGraph_t body = graph;
+  if (condition.exists) {
+    GVDP_CUDA_CHECK(
+        cudaGraphConditionalHandleCreate(&condition.handle, graph, 1, cudaGraphCondAssignDefault));
+    cudaGraphNodeParams params{};
+    params.type = cudaGraphNodeTypeConditional;
+    params.conditional.handle = condition.handle;
+    params.conditional.type = cudaGraphCondTypeWhile;
+    params.conditional.size = 1;
+    cudaGraphNode_t node = nullptr;
+    GVDP_CUDA_CHECK(cudaGraphAddNode(&node, graph, nullptr, nullptr, 0, &params));
+    body = params.conditional.phGraph_out[0];
+  }
 
   cudaStream_t stream = nullptr;
   GVDP_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
   GVDP_CUDA_CHECK(cudaStreamBeginCaptureToGraph(stream, body, nullptr, nullptr, 0,
                                                 cudaStreamCaptureModeRelaxed));
   graphRenderKernel<<<renderBlocks, RENDER_BLOCK, 0, stream>>>(loop);
-  afterRenderKernel<<<1, 1, 0, stream>>>(loop, handle);
+  afterRenderKernel<<<1, 1, 0, stream>>>(loop, condition);
   graphProduceKernel<<<produceBlocks, PRODUCE_BLOCK, 0, stream>>>(loop);
-  afterProduceKernel<<<1, 1, 0, stream>>>(loop, handle);
+  afterProduceKernel<<<1, 1, 0, stream>>>(loop, condition);
   GVDP_CUDA_CHECK(cudaStreamEndCapture(stream, &body));
   GVDP_CUDA_CHECK(cudaStreamDestroy(stream));
 
