@@ -1,9 +1,13 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "gvdp/base/error.h"
+#include "gvdp/sched/graph.h"
 #include "test_util.h"
 
 namespace gvdp {
@@ -15,6 +19,21 @@ void expectInputError(const std::string& args, const std::string& mentions) {
   EXPECT_NE(r.output.find("gvdp: error:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(mentions), std::string::npos) << args << "\n" << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line: " << r.output;
+}
+
+// Small and fast: what these commands would render if they were not refused.
+const std::string TINY = " --width 32 --height 20 --frames 1";
+const std::string TINY_BENCH =
+    " --backend cpu --scenes perlin --movements forward --schedulers sp --frames 1 --warmup 0";
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+uint64_t physicalMemoryBytes() {
+  return static_cast<uint64_t>(sysconf(_SC_PHYS_PAGES)) *
+         static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
 }
 }  // namespace
 
@@ -37,6 +56,132 @@ TEST(Cli, BadInputIsOneLineNamingTheValueWithStatus2) {
                    "/proc/gvdp_cannot_be_here");
   expectInputError("frobnicate", "frobnicate");
   expectInputError("render --backend cpu --scheduler graph" + out, "'graph'");
+  expectInputError("render --backend cpu --width -2147483648" + out, "--width -2147483648");
+}
+
+// Ranges are checked on the user's number before any arithmetic on it (9e12 MiB overflowed a
+// signed multiplication; UBSan in scripts/asan.sh).
+TEST(Cli, PoolSizesOutOfRangeAreRefusedBeforeAnyArithmetic) {
+  std::string out = " --out " + test::tempDir("cli_pool_range");
+  expectInputError("render --backend cpu --pool-mb 9000000000000" + out,
+                   "--pool-mb 9000000000000 (expected 1..190000)");
+  expectInputError("render --backend cpu --pool-mb 0" + out, "--pool-mb 0");
+  expectInputError("render --backend cpu --pool-mb -3" + out, "--pool-mb -3");
+  expectInputError("render --backend cpu --pool-mb 190001" + out, "--pool-mb 190001");
+  expectInputError("render --backend cpu --pool-bricks 9000000000000000000" + out,
+                   "--pool-bricks 9000000000000000000 (expected 1..50000000)");
+  expectInputError("render --backend cpu --pending-launches 9000000000000 --scheduler dp" + out,
+                   "--pending-launches 9000000000000");
+  expectInputError("bench" + TINY_BENCH + " --pool-bricks 0" + out, "--pool-bricks 0");
+}
+
+// A pool inside the accepted range but larger than the machine: one line saying how much it
+// needs and how much there is, before anything is allocated or written (was: bad_alloc, status 1).
+TEST(Cli, PoolLargerThanTheMachineIsRefusedWithWhatItNeeds) {
+  uint64_t mb = physicalMemoryBytes() / (1 << 20) + 1024;
+  if (mb > 190000) GTEST_SKIP() << "this machine holds the largest accepted pool";
+  std::string dir = test::tempDir("cli_pool_memory");
+  std::string pool = "--pool-mb " + std::to_string(mb);
+  expectInputError("render --backend cpu " + pool + TINY + " --out " + dir,
+                   pool + " (scheduler sp at 32x20) needs ");
+  expectInputError("render --backend cpu --scheduler pt " + pool + TINY + " --out " + dir,
+                   "on the cpu backend, which has ");
+  EXPECT_FALSE(std::filesystem::exists(dir));
+  std::string bricks = std::to_string(physicalMemoryBytes() / 4000 + 1000);
+  expectInputError("timeline --backend cpu --frame 0 --pool-bricks " + bricks +
+                       " --width 32 --height 20 --out " + dir + "/t.png",
+                   "--pool-bricks " + bricks);
+  expectInputError("bench" + TINY_BENCH + " --pool-bricks " + bricks + " --out " + dir + "/r.json",
+                   "a pool of " + bricks + " bricks needs ");
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// Every output is checked before the first frame: nothing is rendered, nothing is left behind.
+TEST(Cli, RenderRefusesAnUnwritableTimelineBeforeAnyFrame) {
+  std::string dir = test::tempDir("cli_render_timeline");
+  expectInputError("render --backend cpu" + TINY + " --out " + dir + " --timeline /proc/gvdp_x",
+                   "'/proc/gvdp_x'");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/frame_0000.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir)) << "the out directory made for the check is removed";
+}
+
+TEST(Cli, RenderRefusesAnOutDirectoryItCannotWrite) {
+  expectInputError("render --backend cpu" + TINY + " --out /proc", "output directory '/proc'");
+  expectInputError("render --backend cpu" + TINY + " --out /proc/gvdp_x/y", "'/proc/gvdp_x/y'");
+  std::string file = test::tempDir("cli_render_file");
+  std::ofstream(file) << "a file";
+  expectInputError("render --backend cpu" + TINY + " --out " + file, file);
+  EXPECT_EQ(readFile(file), "a file");
+  std::filesystem::remove(file);
+}
+
+TEST(Cli, TimelineRefusesUnwritableOutputsBeforeRendering) {
+  std::string dir = test::tempDir("cli_timeline_out");
+  std::filesystem::create_directories(dir);
+  std::string args = "timeline --backend cpu --frame 0 --width 32 --height 20";
+  expectInputError(args + " --out " + dir + "/t.png --trace /proc/gvdp_x.json",
+                   "/proc/gvdp_x.json");
+  expectInputError(args + " --out /proc/gvdp_x.png --trace " + dir + "/t.json", "/proc/gvdp_x.png");
+  EXPECT_TRUE(std::filesystem::is_empty(dir)) << "no picture, no trace, no probe left";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, BenchRefusesUnwritableOutputsBeforeRunning) {
+  std::string dir = test::tempDir("cli_bench_out");
+  std::filesystem::create_directories(dir);
+  std::string json = dir + "/r.json";
+  std::ofstream(json) << "earlier results";
+  std::string args = "bench" + TINY_BENCH + " --width 32 --height 20 --out " + json;
+  expectInputError(args + " --csv /proc/gvdp_x.csv", "'/proc/gvdp_x.csv'");
+  expectInputError(args + " --markdown /proc/gvdp_x.md", "'/proc/gvdp_x.md'");
+  expectInputError(args + " --csv " + dir + "/r.csv --markdown /proc", "'/proc'");
+  expectInputError("bench" + TINY_BENCH + " --out /proc/gvdp_x.json", "'/proc/gvdp_x.json'");
+  EXPECT_EQ(readFile(json), "earlier results") << "a refused bench leaves earlier results alone";
+  EXPECT_FALSE(std::filesystem::exists(dir + "/r.csv"));
+  std::filesystem::remove_all(dir);
+}
+
+// Without a device, --backend cuda fails in one line before the banner and before any output.
+TEST(Cli, CudaWithoutADeviceFailsBeforeTheBannerAndLeavesNoOutput) {
+  if (cudaDeviceAvailable()) GTEST_SKIP() << "a CUDA device is present";
+  std::string dir = test::tempDir("cli_no_cuda");
+  expectInputError("render --backend cuda" + TINY + " --out " + dir, "backend 'cuda' unavailable");
+  expectInputError("timeline --backend cuda --frame 0 --out " + dir + "/t.png",
+                   "backend 'cuda' unavailable");
+  expectInputError("bench --backend cuda --schedulers sp --out " + dir + "/r.json",
+                   "backend 'cuda' unavailable");
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// A flag the command or scheduler would ignore is refused, naming it.
+TEST(Cli, FlagsACommandDoesNotUseAreRefused) {
+  std::string dir = test::tempDir("cli_unused");
+  std::string out = " --out " + dir;
+  expectInputError("timeline --backend cpu --frame 0 --frames 3 --out " + dir + "/t.png",
+                   "not --frames 3");
+  expectInputError("timeline --backend cpu --frame 0 --frames 0 --out " + dir + "/t.png",
+                   "not --frames 0");
+  expectInputError("render --backend cpu --scheduler direct --pool-bricks 1000" + TINY + out,
+                   "--pool-bricks 1000 is not used by scheduler direct");
+  expectInputError("render --backend cpu --scheduler direct --pool-mb 64" + TINY + out,
+                   "--pool-mb 64 is not used by scheduler direct");
+  for (const char* scheduler : {"sp", "pt", "direct"})
+    expectInputError(
+        std::string("render --backend cpu --pending-launches 100 --scheduler ") + scheduler + TINY +
+            out,
+        std::string("--pending-launches 100 is used by scheduler dp only, not by ") + scheduler);
+  expectInputError("timeline --backend cpu --frame 0 --scheduler pt --pending-launches 100 --out " +
+                       dir + "/t.png",
+                   "--pending-launches 100");
+  std::string bench = "bench" + TINY_BENCH + " --out " + dir + "/r.json";
+  expectInputError(bench + " --scale --width 320", "--width 320 is not used with --scale");
+  expectInputError(bench + " --scale --height 200", "--height 200 is not used with --scale");
+  std::string lists = "bench --backend cpu --frames 1 --warmup 0 --out " + dir + "/r.json";
+  expectInputError(lists + " --schedulers sp,dp,sp", "--schedulers: 'sp' is listed twice");
+  expectInputError(lists + " --scenes perlin,fbm,perlin", "--scenes: 'perlin' is listed twice");
+  expectInputError(lists + " --movements forward,forward",
+                   "--movements: 'forward' is listed twice");
+  EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
 TEST(Cli, PtRenderReportsItsTasksInStats) {
@@ -82,6 +227,19 @@ TEST(Cli, ScenesAndInfoList) {
   test::CommandResult info = test::runGvdp("info");
   EXPECT_EQ(info.status, 0);
   EXPECT_NE(info.output.find("cuda backend"), std::string::npos);
+}
+
+// GVDP_GRAPH_LOOP selects who repeats graph's loop (scripts/gpu_check.sh); a typo is an error.
+TEST(Cli, GraphLoopEnvironmentIsCheckedByName) {
+  const char* before = std::getenv("GVDP_GRAPH_LOOP");
+  std::string saved = before ? before : "";
+  setenv("GVDP_GRAPH_LOOP", "hots", 1);
+  EXPECT_THROW(graphDriverFromEnvironment(), InputError);
+  setenv("GVDP_GRAPH_LOOP", "host", 1);
+  EXPECT_EQ(graphDriverFromEnvironment(), GraphDriver::Host);
+  unsetenv("GVDP_GRAPH_LOOP");
+  EXPECT_EQ(graphDriverFromEnvironment(), GraphDriver::Device);
+  if (before) setenv("GVDP_GRAPH_LOOP", saved.c_str(), 1);
 }
 
 }  // namespace gvdp

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
+#include <optional>
 #include <vector>
 
 #include "gvdp/base/error.h"
@@ -15,10 +15,11 @@
 #include "gvdp/base/parallel.h"
 #include "gvdp/bench/bench.h"
 #include "gvdp/bench/sequence.h"
+#include "gvdp/cache/clipmap.h"
+#include "gvdp/io/output_paths.h"
 #include "gvdp/io/stats.h"
 #include "gvdp/profile/timeline_export.h"
-#include "gvdp/render/march.h"
-#include "gvdp/sched/pt_body.h"
+#include "gvdp/sched/memory_estimate.h"
 
 namespace gvdp {
 namespace {
@@ -31,21 +32,28 @@ Vec3d parseVector(const std::string& text, const char* flag) {
   return v;
 }
 
-constexpr int UNSET = std::numeric_limits<int>::min();  // flag not given: use the default
+// The pool's accepted sizes: 50 million bricks are 200 GB; 190000 MiB are 49.8 million bricks.
+constexpr int64_t MAX_POOL_BRICKS = 50000000;
+constexpr int64_t MAX_POOL_MB = 190000;
 
+// Numbers left unset take the backend's default.
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
   std::string origin = "0,0,0", out = "out", timeline;
-  int frames = UNSET, width = UNSET, height = UNSET, levels = DEFAULT_LEVELS;
-  int64_t poolBricks = UNSET, poolMb = UNSET, pendingLaunches = UNSET;
+  std::optional<int> frames, width, height;
+  int levels = DEFAULT_LEVELS;
+  std::optional<int64_t> poolBricks, poolMb, pendingLaunches;
   float fov = DEFAULT_FOV_DEGREES;
 };
 
-// The flags of `render`; `timeline` takes them too, but its --out is the picture.
-void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool withOut = true) {
+// The flags of `render`; `timeline` takes them too, but its --out is the picture and it renders
+// frames 0..--frame.
+void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false) {
   cmd->add_option("--scene", f.scene, "scene: " + sceneNames());
   cmd->add_option("--movement", f.movement, "camera path: " + movementNames());
-  cmd->add_option("--frames", f.frames, "frames to render (default: 24 on the GPU, 6 on the CPU)");
+  CLI::Option* frames = cmd->add_option("--frames", f.frames,
+                                        "frames to render (default: 24 on the GPU, 6 on the CPU)");
+  if (timelineCommand) frames->group("");  // hidden: kept only to refuse it (runTimeline)
   cmd->add_option("--width", f.width, "image width (default: 1500 on the GPU, 160 on the CPU)");
   cmd->add_option("--height", f.height, "image height (default: 1000 on the GPU, 100 on the CPU)");
   cmd->add_option("--backend", f.backend, "cpu, cuda or auto (the GPU when there is one)");
@@ -56,66 +64,94 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool withOut = true) {
   cmd->add_option("--pending-launches", f.pendingLaunches,
                   "dp: CDP pending-launch buffer (task-queue capacity on the CPU), default 65536");
   cmd->add_option("--pool-bricks", f.poolBricks,
-                  "brick pool slots (default: 500000 = 2 GB on the GPU, 32768 on the CPU)");
+                  "brick pool slots (default: 500000 = 2 GB on the GPU, 32768 on the CPU; not "
+                  "with direct)");
   cmd->add_option("--pool-mb", f.poolMb, "brick pool size in MiB (instead of --pool-bricks)");
   cmd->add_option("--levels", f.levels, "clipmap levels (voxel size doubles per level)");
   cmd->add_option("--fov", f.fov, "horizontal field of view, degrees");
   cmd->add_option("--origin", f.origin, "x,y,z added to the scene's start position");
-  if (!withOut) return;
+  if (timelineCommand) return;
   cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
   cmd->add_option("--timeline", f.timeline,
                   "also record every frame's GPU-cores timeline: DIR/timeline_NNNN.png and .json");
 }
 
+// "auto" is the GPU when there is one; "cuda" must find a device now, before any output is made.
+Backend resolveBackend(const std::string& name) {
+  if (name == "auto") return cudaDeviceAvailable() ? Backend::Cuda : Backend::Cpu;
+  Backend backend = parseBackend(name);
+  requireBackend(backend);
+  return backend;
+}
+
+// The pool in bricks from --pool-bricks or --pool-mb (0: the backend's default). The user's
+// numbers are range-checked before any arithmetic on them.
+uint32_t poolBricksFrom(const std::optional<int64_t>& bricks, const std::optional<int64_t>& mb) {
+  GVDP_INPUT_CHECK(!bricks || !mb, "give --pool-bricks or --pool-mb, not both");
+  if (bricks) {
+    GVDP_INPUT_CHECK(*bricks >= 1 && *bricks <= MAX_POOL_BRICKS, "bad --pool-bricks ", *bricks,
+                     " (expected 1..", MAX_POOL_BRICKS, ")");
+    return static_cast<uint32_t>(*bricks);
+  }
+  if (!mb) return 0;
+  GVDP_INPUT_CHECK(*mb >= 1 && *mb <= MAX_POOL_MB, "bad --pool-mb ", *mb, " (expected 1..",
+                   MAX_POOL_MB, ")");
+  return static_cast<uint32_t>(*mb * (int64_t{1} << 20) / (BRICK_SAMPLE_COUNT * sizeof(Rgba8)));
+}
+
+// The flag the pool was sized with, to name it when the configuration does not fit.
+std::string poolFlag(const RenderFlags& f) {
+  if (f.poolMb) return "--pool-mb " + std::to_string(*f.poolMb);
+  if (f.poolBricks) return "--pool-bricks " + std::to_string(*f.poolBricks);
+  return "";
+}
+
+// Flags the chosen scheduler has no use for are refused, not ignored.
+void refuseUnusedFlags(const RenderFlags& f, SchedulerKind kind) {
+  bool direct = kind == SchedulerKind::Direct;
+  GVDP_INPUT_CHECK(!direct || !f.poolBricks, "--pool-bricks ", f.poolBricks.value_or(0),
+                   " is not used by scheduler direct (it has no brick cache)");
+  GVDP_INPUT_CHECK(!direct || !f.poolMb, "--pool-mb ", f.poolMb.value_or(0),
+                   " is not used by scheduler direct (it has no brick cache)");
+  GVDP_INPUT_CHECK(kind == SchedulerKind::Dp || !f.pendingLaunches, "--pending-launches ",
+                   f.pendingLaunches.value_or(0), " is used by scheduler dp only, not by ",
+                   schedulerName(kind));
+}
+
+uint32_t pendingLaunchesFrom(const std::optional<int64_t>& n) {
+  if (!n) return 0;
+  GVDP_INPUT_CHECK(*n >= 1 && *n <= (1 << 24), "bad --pending-launches ", *n,
+                   " (expected 1..16777216)");
+  return static_cast<uint32_t>(*n);
+}
+
+// Every input check, the backend's device and memory included: nothing is written before.
 SequenceOptions toOptions(const RenderFlags& f) {
   SequenceOptions o;
   o.scene = f.scene;
   o.movement = parseMovement(f.movement);
-  bool gpu = f.backend == "auto" ? cudaDeviceAvailable() : parseBackend(f.backend) == Backend::Cuda;
-  o.scheduler.backend = gpu ? Backend::Cuda : Backend::Cpu;
+  o.scheduler.backend = resolveBackend(f.backend);
+  bool gpu = o.scheduler.backend == Backend::Cuda;
   o.scheduler.kind = parseScheduler(f.scheduler);
   GVDP_INPUT_CHECK(o.scheduler.kind != SchedulerKind::Graph || gpu,
                    "scheduler 'graph' runs on the cuda backend only (a CUDA graph of the sp loop)");
-  o.frames = f.frames != UNSET ? f.frames : (gpu ? 24 : 6);
-  o.width = f.width != UNSET ? f.width : (gpu ? 1500 : 160);
-  o.height = f.height != UNSET ? f.height : (gpu ? 1000 : 100);
+  refuseUnusedFlags(f, o.scheduler.kind);
+  o.frames = f.frames.value_or(gpu ? 24 : 6);
+  o.width = f.width.value_or(gpu ? 1500 : 160);
+  o.height = f.height.value_or(gpu ? 1000 : 100);
   o.levels = f.levels;
-  GVDP_INPUT_CHECK(f.poolBricks == UNSET || f.poolMb == UNSET,
-                   "give --pool-bricks or --pool-mb, not both");
-  if (f.poolBricks != UNSET) {
-    GVDP_INPUT_CHECK(f.poolBricks >= 1 && f.poolBricks <= 50000000, "bad --pool-bricks ",
-                     f.poolBricks, " (expected 1..50000000)");
-    o.scheduler.poolBricks = static_cast<uint32_t>(f.poolBricks);
-  }
-  if (f.pendingLaunches != UNSET) {
-    GVDP_INPUT_CHECK(f.pendingLaunches >= 1 && f.pendingLaunches <= (1 << 24),
-                     "bad --pending-launches ", f.pendingLaunches, " (expected 1..16777216)");
-    o.scheduler.pendingLaunches = static_cast<uint32_t>(f.pendingLaunches);
-  }
-  if (f.poolMb != UNSET) {
-    int64_t bricks = f.poolMb * (1 << 20) / (BRICK_SAMPLE_COUNT * 4);
-    GVDP_INPUT_CHECK(bricks >= 1 && bricks <= 50000000, "bad --pool-mb ", f.poolMb,
-                     " (expected 1..190000)");
-    o.scheduler.poolBricks = static_cast<uint32_t>(bricks);
-  }
+  o.scheduler.poolBricks = poolBricksFrom(f.poolBricks, f.poolMb);
+  o.scheduler.pendingLaunches = pendingLaunchesFrom(f.pendingLaunches);
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
   o.scheduler.timeline = !f.timeline.empty();
   validate(o);
+  checkResources(o, poolFlag(f));
   return o;
-}
-
-std::string prepareOutDir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  GVDP_INPUT_CHECK(!ec && std::filesystem::is_directory(dir), "cannot create output directory '",
-                   dir, "'", ec ? ": " + ec.message() : "");
-  return dir;
 }
 
 void writeTimeline(const FrameStats& s, const std::string& dir, int index,
                    const SequenceOptions& o) {
-  prepareOutDir(dir);
   char base[64];
   std::snprintf(base, sizeof base, "/timeline_%04d", index);
   const TimelineCapture& t = s.timeline;
@@ -131,9 +167,21 @@ void writeTimeline(const FrameStats& s, const std::string& dir, int index,
               t.overflow ? " (records overflowed)" : "");
 }
 
+void printMemoryReport(const MemoryReport& memory) {
+  if (memory.empty()) return;
+  std::printf("memory:");
+  for (const MemoryItem& m : memory)
+    std::printf(" %s %.1f MB,", m.name.c_str(), static_cast<double>(m.bytes) / 1e6);
+  std::printf(" total %.1f MB\n", static_cast<double>(memoryTotal(memory)) / 1e6);
+}
+
 int runRender(const RenderFlags& flags) {
   SequenceOptions o = toOptions(flags);
-  std::string dir = prepareOutDir(flags.out);
+  OutputPaths outputs;
+  outputs.directory(flags.out);
+  if (!flags.timeline.empty()) outputs.directory(flags.timeline);
+  outputs.keep();
+  const std::string& dir = flags.out;
   std::fprintf(stderr, "gvdp: %s, %s, %dx%d, %d frames, scheduler %s on %s\n", o.scene.c_str(),
                std::string(movementName(o.movement)).c_str(), o.width, o.height, o.frames,
                std::string(schedulerName(o.scheduler.kind)).c_str(),
@@ -162,15 +210,7 @@ int runRender(const RenderFlags& flags) {
     std::fflush(stdout);
   });
   writeStatsJson(dir + "/stats.json", o, frames, memory);
-  if (!memory.empty()) {
-    size_t total = 0;
-    std::printf("memory:");
-    for (const MemoryItem& m : memory) {
-      std::printf(" %s %.1f MB,", m.name.c_str(), static_cast<double>(m.bytes) / 1e6);
-      total += m.bytes;
-    }
-    std::printf(" total %.1f MB\n", static_cast<double>(total) / 1e6);
-  }
+  printMemoryReport(memory);
   double total = 0.0;
   for (const FrameStats& s : frames) total += s.ms;
   double mean = total / static_cast<double>(frames.size());
@@ -183,11 +223,18 @@ int runRender(const RenderFlags& flags) {
 // gvdp timeline: renders frames 0..K and draws the timeline of frame K.
 int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
                 const std::string& trace) {
+  GVDP_INPUT_CHECK(!flags.frames,
+                   "timeline takes --frame K (it renders frames 0..K), not --frames ",
+                   flags.frames.value_or(0));
   GVDP_INPUT_CHECK(frame >= 0 && frame <= 100000, "bad --frame ", frame, " (expected 0..100000)");
   RenderFlags f = flags;
   f.frames = frame + 1;
   SequenceOptions o = toOptions(f);
   o.scheduler.timeline = true;
+  OutputPaths outputs;
+  outputs.file(png);
+  if (!trace.empty()) outputs.file(trace);
+  outputs.keep();
   FrameStats last;
   renderSequence(o, [&](const Image&, const FrameStats& s) { last = s; });
   const TimelineCapture& t = last.timeline;
@@ -218,12 +265,13 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
+// Numbers left unset take the backend's default.
 struct BenchFlags {
   std::string scenes = "perlin,fbm,forest,random-spheres,aligned-spheres";
   std::string movements = "walkthrough,forward,backward,sideways,spinning";
   std::string schedulers = "sp,dp,pt", backend = "auto", out = "results.json", csv, markdown;
-  int frames = UNSET, warmup = UNSET, width = UNSET, height = UNSET;
-  int64_t poolBricks = UNSET;
+  std::optional<int> frames, warmup, width, height;
+  std::optional<int64_t> poolBricks;
   bool scale = false;
 };
 
@@ -233,41 +281,81 @@ void writeText(const std::string& path, const std::string& text) {
   GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
 }
 
-int runBenchCommand(const BenchFlags& f) {
-  BenchOptions o;
-  bool gpu = f.backend == "auto" ? cudaDeviceAvailable() : parseBackend(f.backend) == Backend::Cuda;
-  o.backend = gpu ? Backend::Cuda : Backend::Cpu;
-  for (const std::string& s : splitList(f.scenes))
-    o.scenes.push_back(std::string(findScene(s).name));
-  for (const std::string& m : splitList(f.movements)) o.movements.push_back(parseMovement(m));
-  for (const std::string& k : splitList(f.schedulers)) {
+// A list that names an item twice would run its cells twice.
+void refuseDuplicates(const std::vector<std::string>& names, const char* flag) {
+  for (size_t i = 0; i < names.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      GVDP_INPUT_CHECK(names[i] != names[j], "bad ", flag, ": '", names[i], "' is listed twice");
+}
+
+std::vector<SchedulerKind> benchSchedulers(const std::string& list, bool gpu) {
+  std::vector<SchedulerKind> kinds;
+  std::vector<std::string> names;
+  for (const std::string& k : splitList(list)) {
     SchedulerKind kind = parseScheduler(k);
     GVDP_INPUT_CHECK(kind != SchedulerKind::Direct, "bad --schedulers '", k,
                      "' (direct has no cache to benchmark; use sp, dp, pt, graph)");
     GVDP_INPUT_CHECK(kind != SchedulerKind::Graph || gpu, "bad --schedulers '", k,
                      "' (graph runs on the cuda backend only)");
-    o.schedulers.push_back(kind);
+    kinds.push_back(kind);
+    names.push_back(std::string(schedulerName(kind)));
   }
-  GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),
-                   "empty --scenes, --movements or --schedulers");
-  o.width = f.width != UNSET ? f.width : (gpu ? 1500 : 160);
-  o.height = f.height != UNSET ? f.height : (gpu ? 1000 : 100);
-  o.frames = f.frames != UNSET ? f.frames : (gpu ? 32 : 6);
-  o.warmup = f.warmup != UNSET ? f.warmup : (gpu ? 6 : 2);
-  GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 100000, "bad --frames ", o.frames);
-  GVDP_INPUT_CHECK(o.warmup >= 0 && o.warmup <= 100000, "bad --warmup ", o.warmup);
-  if (f.poolBricks != UNSET) {
-    GVDP_INPUT_CHECK(f.poolBricks >= 1 && f.poolBricks <= 50000000, "bad --pool-bricks ",
-                     f.poolBricks);
-    o.poolBricks = static_cast<uint32_t>(f.poolBricks);
+  refuseDuplicates(names, "--schedulers");
+  return kinds;
+}
+
+std::vector<std::string> benchScenes(const std::string& list) {
+  std::vector<std::string> scenes;
+  for (const std::string& s : splitList(list)) scenes.push_back(std::string(findScene(s).name));
+  refuseDuplicates(scenes, "--scenes");
+  return scenes;
+}
+
+std::vector<Movement> benchMovements(const std::string& list) {
+  std::vector<Movement> movements;
+  std::vector<std::string> names;
+  for (const std::string& m : splitList(list)) {
+    movements.push_back(parseMovement(m));
+    names.push_back(std::string(movementName(movements.back())));
   }
+  refuseDuplicates(names, "--movements");
+  return movements;
+}
+
+// Every input check of `bench`, the memory of every cell included: nothing runs before.
+BenchOptions benchOptions(const BenchFlags& f) {
+  BenchOptions o;
+  o.backend = resolveBackend(f.backend);
+  bool gpu = o.backend == Backend::Cuda;
+  o.scenes = benchScenes(f.scenes);
+  o.movements = benchMovements(f.movements);
+  o.schedulers = benchSchedulers(f.schedulers, gpu);
+  GVDP_INPUT_CHECK(!f.scale || !f.width, "--width ", f.width.value_or(0),
+                   " is not used with --scale (it measures 1280x720 to 3840x2160)");
+  GVDP_INPUT_CHECK(!f.scale || !f.height, "--height ", f.height.value_or(0),
+                   " is not used with --scale (it measures 1280x720 to 3840x2160)");
+  o.width = f.width.value_or(gpu ? 1500 : 160);
+  o.height = f.height.value_or(gpu ? 1000 : 100);
+  o.frames = f.frames.value_or(gpu ? 32 : 6);
+  o.warmup = f.warmup.value_or(gpu ? 6 : 2);
+  GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 100000, "bad --frames ", o.frames,
+                   " (expected 1..100000)");
+  GVDP_INPUT_CHECK(o.warmup >= 0 && o.warmup <= 100000, "bad --warmup ", o.warmup,
+                   " (expected 0..100000)");
+  o.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   o.scale = f.scale;
-  SequenceOptions check;
-  check.width = o.width;
-  check.height = o.height;
-  validate(check);
-  // Fail on an unwritable output before the long run, not after.
-  writeText(f.out, "");
+  validate(o);
+  return o;
+}
+
+int runBenchCommand(const BenchFlags& f) {
+  BenchOptions o = benchOptions(f);
+  // Every output is checked before the long run, not after it.
+  OutputPaths outputs;
+  outputs.file(f.out);
+  if (!f.csv.empty()) outputs.file(f.csv);
+  if (!f.markdown.empty()) outputs.file(f.markdown);
+  outputs.keep();
   BenchResults r = runBench(o, [](int done, int total, const std::string& line) {
     int bar = total ? 30 * done / total : 30;
     std::fprintf(stderr, "\r[%-30s] %d/%d %s\x1b[K", std::string(bar, '#').c_str(), done, total,
@@ -291,38 +379,35 @@ int runScenes() {
   return 0;
 }
 
-// pt's rings, task table and wait lists (pt_cuda.cpp), with task ids for every pixel and about
-// 4096 worker warps.
-size_t ptQueueBytes(size_t pixels) {
-  uint32_t n = static_cast<uint32_t>(pixels), ids = n + 4096;
-  return (ringCapacity(n) + 2 * size_t{ringCapacity(ids)}) * sizeof(uint64_t) +
-         ids * (sizeof(BrickKey) + sizeof(uint32_t)) + pixels * sizeof(uint32_t);
-}
-
-// Bytes of every structure for a configuration, computed as the caches allocate them.
-void printMemory(const char* label, int width, int height, uint32_t poolBricks) {
-  float pixelAngle = 2.0f * std::tan(0.5f * DEFAULT_FOV_DEGREES * PI / 180.0f) / width;
-  size_t w = static_cast<size_t>(clipmapWidthFor(pixelAngle));
-  size_t pixels = static_cast<size_t>(width) * height, k = poolBricks;
-  MemoryReport m = {{"brick_pool", k * BRICK_SAMPLE_COUNT * sizeof(Rgba8)},
-                    {"indirection_table", DEFAULT_LEVELS * w * w * w * sizeof(uint32_t)},
-                    {"inverse_table", k * sizeof(BrickKey)},
-                    {"timestamps", k * sizeof(uint32_t)},
-                    {"free_slot_list_and_lru_sort", k * 4 * sizeof(uint32_t)},
-                    {"request_queue", pixels * sizeof(BrickKey)},
-                    {"ray_payload", pixels * sizeof(RayState)},
-                    {"live_ray_lists_and_image", pixels * 3 * sizeof(uint32_t)},
-                    {"dp_ray_locks", pixels * sizeof(uint32_t)},
-                    {"pt_queues_and_wait_lists", ptQueueBytes(pixels)}};
-  size_t total = 0;
-  std::printf("memory at %s (%dx%d, clipmap %zu^3 x %d levels, pool %u bricks):\n", label, width,
-              height, w, DEFAULT_LEVELS, poolBricks);
-  for (const MemoryItem& i : m) {
-    std::printf("  %-28s %10.1f MB\n", i.name.c_str(), static_cast<double>(i.bytes) / 1e6);
-    total += i.bytes;
+// Bytes of every structure at a configuration (memory_estimate.h): the items of sp, dp and pt,
+// then each scheduler's total.
+void printMemory(const char* label, Backend backend, int width, int height) {
+  SequenceOptions o;
+  o.width = width;
+  o.height = height;
+  o.scheduler.backend = backend;
+  FrameSetup frame = frameOf(o, 0);
+  std::printf("memory at %s (%dx%d, clipmap %d^3 x %d levels, pool %u bricks):\n", label, width,
+              height, clipmapOf(frame).width, o.levels, poolBricksOf(o.scheduler));
+  MemoryReport items;
+  std::string totals;
+  for (SchedulerKind kind : {SchedulerKind::Sp, SchedulerKind::Dp, SchedulerKind::Pt}) {
+    o.scheduler.kind = kind;
+    MemoryReport m = memoryEstimate(o.scheduler, frame);
+    for (const MemoryItem& item : m)
+      if (std::none_of(items.begin(), items.end(),
+                       [&](const MemoryItem& i) { return i.name == item.name; }))
+        items.push_back(item);
+    char total[64];
+    std::snprintf(total, sizeof total, "%s%s %.1f MB", totals.empty() ? "" : ", ",
+                  std::string(schedulerName(kind)).c_str(),
+                  static_cast<double>(memoryTotal(m)) / 1e6);
+    totals += total;
   }
-  std::printf("  %-28s %10.1f MB (all schedulers' parts; dp adds CUDA's pending-launch buffer)\n",
-              "total", static_cast<double>(total) / 1e6);
+  for (const MemoryItem& i : items)
+    std::printf("  %-28s %10.1f MB\n", i.name.c_str(), static_cast<double>(i.bytes) / 1e6);
+  std::printf("  total: %s%s\n", totals.c_str(),
+              backend == Backend::Cuda ? " (dp adds CUDA's pending-launch buffer)" : "");
 }
 
 int runInfo() {
@@ -331,8 +416,8 @@ int runInfo() {
   std::printf("devices: %s\n", cudaDeviceSummary().c_str());
   std::printf("cpu threads: %d\n", ThreadPool::global().size());
   std::printf("scenes: %s\nmovements: %s\n", sceneNames().c_str(), movementNames().c_str());
-  printMemory("the GPU defaults", 1500, 1000, DEFAULT_POOL_BRICKS_CUDA);
-  printMemory("the CPU defaults", 160, 100, DEFAULT_POOL_BRICKS_CPU);
+  printMemory("the GPU defaults", Backend::Cuda, 1500, 1000);
+  printMemory("the CPU defaults", Backend::Cpu, 160, 100);
   return 0;
 }
 
@@ -347,7 +432,7 @@ int run(int argc, char** argv) {
   std::string timelinePng = "timeline.png", timelineTrace;
   CLI::App* timelineCmd =
       app.add_subcommand("timeline", "draw the GPU-cores timeline of one frame (paper Fig. 5)");
-  addRenderFlags(timelineCmd, timeline, false);
+  addRenderFlags(timelineCmd, timeline, true);
   timelineCmd->add_option("--frame", timelineFrame,
                           "the frame to record (frames before it warm up)");
   timelineCmd->add_option("--out", timelinePng, "timeline picture (default timeline.png)");

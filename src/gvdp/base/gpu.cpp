@@ -31,6 +31,13 @@ std::string cudaDeviceSummary() {
   }
   return s.str();
 }
+
+std::optional<uint64_t> cudaFreeMemoryBytes() {
+  size_t freeBytes = 0, totalBytes = 0;
+  if (!cudaDeviceAvailable() || cudaMemGetInfo(&freeBytes, &totalBytes) != cudaSuccess)
+    return std::nullopt;
+  return freeBytes;
+}
 #else
 bool cudaBuilt() {
   return false;
@@ -40,6 +47,9 @@ bool cudaDeviceAvailable() {
 }
 std::string cudaDeviceSummary() {
   return "this gvdp was built without CUDA";
+}
+std::optional<uint64_t> cudaFreeMemoryBytes() {
+  return std::nullopt;
 }
 #endif
 

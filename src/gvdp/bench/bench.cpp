@@ -6,13 +6,18 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
 #include "gvdp/bench/frame_stats.h"
 
 namespace gvdp {
 namespace {
 
-BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
+// --scale: dp's frame time at these sizes, on the first scene's walkthrough.
+constexpr int SCALE_SIZES[4][2] = {{1280, 720}, {1500, 1000}, {1920, 1080}, {3840, 2160}};
+
+SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Movement m,
+                             SchedulerKind k) {
   SequenceOptions s;
   s.scene = scene;
   s.movement = m;
@@ -20,7 +25,24 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   s.height = o.height;
   s.frames = o.warmup + o.frames;
   s.scheduler = {o.backend, k, o.poolBricks};
+  return s;
+}
+
+BenchOptions scaleOptions(const BenchOptions& o, const int size[2]) {
+  BenchOptions so = o;
+  so.width = size[0];
+  so.height = size[1];
+  return so;
+}
+
+void validateCell(const SequenceOptions& s) {
   validate(s);
+  checkResources(s);
+}
+
+BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
+  SequenceOptions s = cellSequence(o, scene, m, k);
+  validateCell(s);
   std::unique_ptr<Scheduler> scheduler = makeScheduler(s.scheduler);
   Image image;
   BenchCell c{};
@@ -58,8 +80,21 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
 
 }  // namespace
 
+void validate(const BenchOptions& o) {
+  GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),
+                   "empty --scenes, --movements or --schedulers");
+  // Sizes and memory depend on the scheduler and the frame size, not on the scene or the path.
+  for (SchedulerKind k : o.schedulers)
+    validateCell(cellSequence(o, o.scenes[0], o.movements[0], k));
+  if (o.scale)
+    for (const auto& size : SCALE_SIZES)
+      validateCell(cellSequence(scaleOptions(o, size), o.scenes[0], Movement::Walkthrough,
+                                SchedulerKind::Dp));
+}
+
 BenchResults runBench(const BenchOptions& o,
                       const std::function<void(int, int, const std::string&)>& progress) {
+  validate(o);
   BenchResults r;
   r.device = o.backend == Backend::Cuda ? cudaDeviceSummary() : "cpu";
   r.backend = std::string(backendName(o.backend));
@@ -85,13 +120,10 @@ BenchResults runBench(const BenchOptions& o,
     for (const BenchCell& sp : r.cells)
       if (sp.scheduler == "sp" && sp.scene == c.scene && sp.movement == c.movement)
         c.speedupVsSp = c.avgFps / sp.avgFps;
-  if (o.scale && !o.scenes.empty()) {
-    const int SIZES[4][2] = {{1280, 720}, {1500, 1000}, {1920, 1080}, {3840, 2160}};
-    for (const auto& wh : SIZES) {
-      BenchOptions so = o;
-      so.width = wh[0];
-      so.height = wh[1];
-      BenchCell c = runCell(so, o.scenes[0], Movement::Walkthrough, SchedulerKind::Dp);
+  if (o.scale) {
+    for (const auto& wh : SCALE_SIZES) {
+      BenchCell c =
+          runCell(scaleOptions(o, wh), o.scenes[0], Movement::Walkthrough, SchedulerKind::Dp);
       r.scale.push_back({wh[0], wh[1], c.medianMs, c.avgFps});
       progress(done, total, "scale " + std::to_string(wh[0]) + "x" + std::to_string(wh[1]));
     }

@@ -44,6 +44,10 @@ struct BenchResults {
   std::vector<BenchScalePoint> scale;
 };
 
+// Every cell's sequence (the --scale ones too) through validate() and checkResources(): throws
+// InputError before anything runs. runBench() calls it first.
+void validate(const BenchOptions& o);
+
 // progress(done, total, line) after every cell.
 BenchResults runBench(const BenchOptions& o,
                       const std::function<void(int, int, const std::string&)>& progress);

@@ -1,6 +1,10 @@
 #include "gvdp/bench/sequence.h"
 
+#include <cstdio>
+
 #include "gvdp/base/error.h"
+#include "gvdp/sched/graph.h"
+#include "gvdp/sched/memory_estimate.h"
 
 namespace gvdp {
 
@@ -23,6 +27,37 @@ void validate(const SequenceOptions& o) {
       std::abs(o.origin.x) < LIMIT && std::abs(o.origin.y) < LIMIT && std::abs(o.origin.z) < LIMIT,
       "bad --origin ", o.origin.x, ",", o.origin.y, ",", o.origin.z,
       " (each coordinate within 1e8)");
+  if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
+}
+
+namespace {
+
+std::string gigabytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GB", static_cast<double>(bytes) / 1e9);
+  return text;
+}
+
+// "scheduler sp at 160x100 with a pool of 32768 bricks", or "<what> (scheduler sp at 160x100)".
+std::string describe(const SequenceOptions& o, const std::string& what) {
+  std::string d = "scheduler " + std::string(schedulerName(o.scheduler.kind)) + " at " +
+                  std::to_string(o.width) + "x" + std::to_string(o.height);
+  if (!what.empty()) return what + " (" + d + ")";
+  if (o.scheduler.kind == SchedulerKind::Direct) return d;
+  return d + " with a pool of " + std::to_string(poolBricksOf(o.scheduler)) + " bricks";
+}
+
+}  // namespace
+
+void checkResources(const SequenceOptions& o, const std::string& what) {
+  requireBackend(o.scheduler.backend);
+  std::optional<uint64_t> have = backendMemoryBytes(o.scheduler.backend);
+  if (!have) return;  // nothing to compare with: the allocations will tell
+  uint64_t need = memoryTotal(memoryEstimate(o.scheduler, frameOf(o, 0)));
+  bool cuda = o.scheduler.backend == Backend::Cuda;
+  GVDP_INPUT_CHECK(need <= *have, describe(o, what), " needs ", gigabytes(need), " on the ",
+                   backendName(o.scheduler.backend), " backend, which has ", gigabytes(*have),
+                   cuda ? " of device memory free" : " of memory available");
 }
 
 FrameSetup frameOf(const SequenceOptions& o, int frame) {
@@ -36,6 +71,7 @@ FrameSetup frameOf(const SequenceOptions& o, int frame) {
 MemoryReport renderSequence(const SequenceOptions& o,
                             const std::function<void(const Image&, const FrameStats&)>& onFrame) {
   validate(o);
+  checkResources(o);
   std::unique_ptr<Scheduler> scheduler = makeScheduler(o.scheduler);
   Image image;
   for (int f = 0; f < o.frames; ++f) {

@@ -25,10 +25,15 @@ struct SequenceOptions {
 // Throws InputError naming the first bad value.
 void validate(const SequenceOptions& options);
 
+// After validate(): throws InputError when the backend is unavailable or when the structures of
+// the sequence (memory_estimate.h) do not fit in what the backend can hold now. `what` names the
+// configuration in the message, e.g. "--pool-mb 190000" (default: scheduler, size and pool).
+void checkResources(const SequenceOptions& options, const std::string& what = "");
+
 FrameSetup frameOf(const SequenceOptions& options, int frame);
 
-// Renders every frame in order; onFrame sees each image and its stats. Returns the memory the
-// scheduler held.
+// Renders every frame in order (after validate() and checkResources()); onFrame sees each image
+// and its stats. Returns the memory the scheduler held.
 MemoryReport renderSequence(const SequenceOptions& options,
                             const std::function<void(const Image&, const FrameStats&)>& onFrame);
 

@@ -4,6 +4,7 @@
 // the sp loop afterwards, and counted.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 
 #include "gvdp/sched/scheduler.h"
@@ -12,5 +13,7 @@ namespace gvdp {
 
 std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& options);
 std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& options);
+// Bytes of the CPU task queue at full capacity (its memory() item "task_queue").
+size_t dpCpuTaskQueueBytes(size_t pendingLaunches);
 
 }  // namespace gvdp

@@ -111,7 +111,7 @@ class DpCpu final : public Scheduler {
     MemoryReport m = cache_.memory();
     m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
     m.push_back({"ray_locks", locks_.size() * sizeof(uint32_t)});
-    m.push_back({"task_queue", pendingLaunches_ * sizeof(DpTask)});
+    m.push_back({"task_queue", dpCpuTaskQueueBytes(pendingLaunches_)});
     return m;
   }
 
@@ -137,6 +137,10 @@ class DpCpu final : public Scheduler {
 };
 
 }  // namespace
+
+size_t dpCpuTaskQueueBytes(size_t pendingLaunches) {
+  return pendingLaunches * sizeof(DpTask);
+}
 
 std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o) {
   return std::make_unique<DpCpu>(o);

@@ -9,6 +9,17 @@
 
 namespace gvdp {
 
+// Who repeats the loop's body. Device: the graph's conditional WHILE node (the scheduler).
+// Host: the graph is the body alone, launched again while loop.stop is 0 (one read-back per
+// pass, as sp): the same kernels and protocol, for the tools that cannot check the kernels of a
+// conditional node's body (compute-sanitizer 2025.3's racecheck crashes in its own library on
+// this graph, its synccheck reports barrier divergence in a trivially correct kernel there:
+// scripts/probe/graph_probe.cu). GVDP_GRAPH_LOOP=host selects it (scripts/gpu_check.sh).
+enum class GraphDriver { Device, Host };
+
+// GVDP_GRAPH_LOOP: "device" (default) or "host"; throws InputError naming any other value.
+GraphDriver graphDriverFromEnvironment();
+
 std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& options);
 
 }  // namespace gvdp

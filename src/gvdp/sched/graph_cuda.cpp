@@ -1,22 +1,10 @@
-#include <cstdlib>
-#include <string>
-
-#include "gvdp/sched/graph.h"
 #include "gvdp/sched/graph_cuda.h"
+#include "gvdp/sched/graph.h"
 #include "gvdp/sched/sp.h"
 #include "gvdp/sched/sp_loop_cuda.h"
 
 namespace gvdp {
 namespace {
-
-// GVDP_GRAPH_LOOP=host: the host repeats the loop's body (for compute-sanitizer, graph_cuda.h).
-GraphDriver graphDriverFromEnvironment() {
-  const char* v = std::getenv("GVDP_GRAPH_LOOP");
-  std::string value = v ? v : "device";
-  GVDP_INPUT_CHECK(value == "device" || value == "host", "bad GVDP_GRAPH_LOOP '", value,
-                   "' (expected device or host)");
-  return value == "host" ? GraphDriver::Host : GraphDriver::Device;
-}
 
 class GraphCuda final : public Scheduler {
  public:

@@ -9,6 +9,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/frame.h"
 #include "gvdp/render/march.h"
+#include "gvdp/sched/graph.h"
 
 namespace gvdp {
 
@@ -33,14 +34,6 @@ struct GraphLoop {
   uint32_t liveCount, nextCount, passes, stop, exit, failedBefore;
   uint32_t cursor;  // next item of the current pass (render: per warp; production: per block)
 };
-
-// Who repeats the loop's body. Device: the graph's conditional WHILE node (the scheduler).
-// Host: the graph is the body alone, launched again while loop.stop is 0 (one read-back per
-// pass, as sp): the same kernels and protocol, for the tools that cannot check the kernels of a
-// conditional node's body (compute-sanitizer 2025.3's racecheck crashes in its own library on
-// this graph, its synccheck reports barrier divergence in a trivially correct kernel there:
-// scripts/probe/graph_probe.cu). GVDP_GRAPH_LOOP=host selects it (scripts/gpu_check.sh).
-enum class GraphDriver { Device, Host };
 
 // Builds and instantiates the graph for this device; its kernels read the uploaded frame and
 // *loop.

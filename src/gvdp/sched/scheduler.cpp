@@ -1,5 +1,8 @@
 #include "gvdp/sched/scheduler.h"
 
+#include <cstdlib>
+#include <string>
+
 #include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
 #include "gvdp/sched/direct.h"
@@ -36,11 +39,24 @@ SchedulerKind parseScheduler(std::string_view name) {
                    "' (schedulers: sp, dp, pt, graph, direct)");
 }
 
+void requireBackend(Backend backend) {
+  if (backend != Backend::Cuda) return;
+  GVDP_INPUT_CHECK(cudaBuilt(), "backend 'cuda' unavailable: this gvdp was built without CUDA");
+  GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
+}
+
+GraphDriver graphDriverFromEnvironment() {
+  const char* v = std::getenv("GVDP_GRAPH_LOOP");
+  std::string value = v ? v : "device";
+  GVDP_INPUT_CHECK(value == "device" || value == "host", "bad GVDP_GRAPH_LOOP '", value,
+                   "' (expected device or host)");
+  return value == "host" ? GraphDriver::Host : GraphDriver::Device;
+}
+
 namespace {
 std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options) {
+  requireBackend(options.backend);
   if (options.backend == Backend::Cuda) {
-    GVDP_INPUT_CHECK(cudaBuilt(), "backend 'cuda' unavailable: this gvdp was built without CUDA");
-    GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
     switch (options.kind) {
       case SchedulerKind::Direct:
         return makeDirectCuda();

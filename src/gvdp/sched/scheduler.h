@@ -51,6 +51,12 @@ constexpr uint32_t DEFAULT_POOL_BRICKS_CUDA = 500000;
 constexpr uint32_t DEFAULT_POOL_BRICKS_CPU = 32768;
 constexpr uint32_t DEFAULT_PENDING_LAUNCHES = 1u << 16;
 
+// The pool a scheduler with these options holds (its backend's default for 0).
+inline uint32_t poolBricksOf(const SchedulerOptions& o) {
+  if (o.poolBricks) return o.poolBricks;
+  return o.backend == Backend::Cuda ? DEFAULT_POOL_BRICKS_CUDA : DEFAULT_POOL_BRICKS_CPU;
+}
+
 class Scheduler {
  public:
   virtual ~Scheduler() = default;
@@ -74,6 +80,7 @@ class Scheduler {
 };
 
 // Throws InputError when the backend is not available (no CUDA build or no device).
+void requireBackend(Backend backend);
 std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options);
 
 }  // namespace gvdp

@@ -1,0 +1,108 @@
+#include "gvdp/sched/memory_estimate.h"
+
+#include "gvdp/base/gpu.h"
+#include "gvdp/base/host_memory.h"
+#include "gvdp/base/parallel.h"
+#include "gvdp/cache/clipmap.h"
+#include "gvdp/render/march.h"
+#include "gvdp/sched/dp.h"
+#include "gvdp/sched/pt_body.h"
+
+namespace gvdp {
+namespace {
+
+// pt's worker warps on CUDA (pt_cuda.cpp: blocks x 8): about 4096 on a large GPU.
+constexpr uint32_t PT_CUDA_WORKER_WARPS = 4096;
+
+// The brick cache (brick_cache_cpu.cpp, brick_cache_cuda.cpp).
+MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
+  size_t k = poolBricksOf(o), pixels = static_cast<size_t>(f.pixelCount());
+  MemoryReport m = {{"brick_pool", k * BRICK_SAMPLE_COUNT * sizeof(Rgba8)},
+                    {"indirection_table", clipmapOf(f).entryCount() * sizeof(uint32_t)},
+                    {"inverse_table", k * sizeof(BrickKey)},
+                    {"timestamps", k * sizeof(uint32_t)}};
+  if (o.backend == Backend::Cuda) {
+    // Keys and values in and out, and cub's scratch: about one more copy of keys and values.
+    m.push_back({"free_slot_list_and_lru_sort", 6 * k * sizeof(uint32_t)});
+  } else {
+    m.push_back({"free_slot_list", k * sizeof(uint32_t)});
+    m.push_back({"lru_sort", k * sizeof(uint64_t)});  // refill()'s (timestamp, slot) order
+  }
+  m.push_back({"request_queue", pixels * sizeof(BrickKey)});
+  return m;
+}
+
+// pt's rings, task keys, wait lists and counters (pt_cpu.cpp, pt_cuda.cpp).
+size_t ptQueueBytes(uint32_t pixels, uint32_t ids) {
+  return (ringCapacity(pixels) + 2 * size_t{ringCapacity(ids)}) * sizeof(uint64_t) +
+         ids * (sizeof(BrickKey) + sizeof(uint32_t)) + size_t{pixels} * sizeof(uint32_t) +
+         PT_COUNTER_COUNT * PT_COUNTER_STRIDE * sizeof(uint32_t);
+}
+
+// The per-pixel structures of each scheduler on the CPU (*_cpu.cpp).
+void addCpuRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
+  size_t payload = pixels * sizeof(RayState), list = pixels * sizeof(uint32_t);
+  uint32_t n = static_cast<uint32_t>(pixels);
+  switch (o.kind) {
+    case SchedulerKind::Sp:
+    case SchedulerKind::Graph:
+      m.push_back({"ray_payload", payload});
+      m.push_back({"live_ray_lists", 2 * list});
+      break;
+    case SchedulerKind::Dp:
+      m.push_back({"ray_payload", payload});
+      m.push_back({"ray_locks", list});
+      m.push_back(
+          {"task_queue",
+           dpCpuTaskQueueBytes(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES)});
+      m.push_back({"sweep_ray_lists", 2 * list});
+      break;
+    case SchedulerKind::Pt:
+      m.push_back({"ray_payload", payload});
+      m.push_back({"pt_queues_and_wait_lists",
+                   ptQueueBytes(n, n + static_cast<uint32_t>(ThreadPool::global().size()))});
+      break;
+    case SchedulerKind::Direct:
+      break;
+  }
+}
+
+// The same on CUDA (SpBuffersCuda: payload, two live lists and the image; *_cuda.cpp).
+void addCudaRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
+  if (o.kind == SchedulerKind::Direct) {
+    m.push_back({"device_image", pixels * sizeof(uint32_t)});
+    return;
+  }
+  m.push_back({"ray_payload_lists_image", pixels * (sizeof(RayState) + 3 * sizeof(uint32_t))});
+  uint32_t n = static_cast<uint32_t>(pixels);
+  if (o.kind == SchedulerKind::Dp) m.push_back({"ray_locks", pixels * sizeof(uint32_t)});
+  if (o.kind == SchedulerKind::Pt)
+    m.push_back({"pt_queues_and_wait_lists", ptQueueBytes(n, n + PT_CUDA_WORKER_WARPS)});
+}
+
+}  // namespace
+
+MemoryReport memoryEstimate(const SchedulerOptions& o, const FrameSetup& f) {
+  size_t pixels = static_cast<size_t>(f.pixelCount());
+  MemoryReport m;
+  if (o.kind != SchedulerKind::Direct) m = cacheItems(o, f);
+  if (o.backend == Backend::Cuda) {
+    addCudaRayItems(o, pixels, m);
+  } else {
+    addCpuRayItems(o, pixels, m);
+    m.push_back({"image", pixels * sizeof(uint32_t)});  // the image every frame lands in
+  }
+  return m;
+}
+
+uint64_t memoryTotal(const MemoryReport& report) {
+  uint64_t total = 0;
+  for (const MemoryItem& item : report) total += item.bytes;
+  return total;
+}
+
+std::optional<uint64_t> backendMemoryBytes(Backend backend) {
+  return backend == Backend::Cuda ? cudaFreeMemoryBytes() : hostAvailableMemoryBytes();
+}
+
+}  // namespace gvdp
