@@ -95,10 +95,27 @@ TEST_P(GpuDpTest, MatchesGpuSpBitForBitOnA20FrameWalkthrough) {
   EXPECT_EQ(unfinished, 0);
 }
 
-TEST_P(GpuDpTest, TinyPoolAndTinyLaunchBufferFinishEveryPixel) {
+TEST_P(GpuDpTest, TinyPoolFinishesEveryPixel) {
   GVDP_REQUIRE_GPU();
   Renders a = renderRun(sceneName(GetParam()), {Backend::Cuda, SchedulerKind::Dp, 64}, 3, 320, 200);
-  for (const FrameStats& s : a.stats) EXPECT_EQ(s.unfinishedPixels, 0);
+  for (const FrameStats& s : a.stats) {
+    EXPECT_EQ(s.unfinishedPixels, 0);
+    EXPECT_TRUE(s.degraded);
+  }
+}
+
+// CUDA's pending-launch buffer set to 32 launches: most device launches are refused, counted,
+// and the sweep finishes their rays: the same images as sp, no pixel lost.
+TEST_P(GpuDpTest, TinyLaunchBufferRefusesLaunchesButMatchesSp) {
+  GVDP_REQUIRE_GPU();
+  std::string scene = sceneName(GetParam());
+  Renders sp = renderRun(scene, {Backend::Cuda, SchedulerKind::Sp}, 3, 320, 200);
+  Renders dp = renderRun(scene, {Backend::Cuda, SchedulerKind::Dp, 0, 32}, 3, 320, 200);
+  EXPECT_GT(dp.stats[0].launchFailures, 0u) << "32 pending launches must overflow";
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_EQ(dp.stats[f].unfinishedPixels, 0);
+    EXPECT_EQ(sp.images[f].pixels, dp.images[f].pixels) << scene << " frame " << f;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuDpTest, ::testing::Range(0, SCENE_COUNT));
