@@ -5,8 +5,8 @@
 #include <set>
 
 #include "gvdp/cache/brick_cache_cpu.h"
+#include "gvdp/cache/cached_access.h"
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/render/cached_access.h"
 #include "gvdp/world/registry.h"
 
 namespace gvdp {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gvdp/base/error.h"
-#include "gvdp/sched/graph.h"
+#include "gvdp/sched/graph/graph.h"
 #include "test_util.h"
 
 namespace gvdp {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "gvdp/bench/sequence.h"
-#include "gvdp/sched/dp_body.h"
+#include "gvdp/sched/dp/dp_body.h"
 #include "test_util.h"
 
 namespace gvdp {
@@ -12,7 +12,7 @@ using test::sceneName;
 
 class DpCpuTest : public ::testing::TestWithParam<int> {};
 
-// The main correctness test (DESIGN.md): dp renders the very images sp renders.
+// The main correctness test (docs/DESIGN.md): dp renders the very images sp renders.
 TEST_P(DpCpuTest, MatchesSpBitForBitOnA20FrameWalkthrough) {
   Renders sp = renderRun(sceneName(GetParam()), {Backend::Cpu, SchedulerKind::Sp}, 20, 48, 32);
   Renders dp = renderRun(sceneName(GetParam()), {Backend::Cpu, SchedulerKind::Dp}, 20, 48, 32);

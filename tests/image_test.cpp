@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "gvdp/base/error.h"
-#include "gvdp/io/image.h"
+#include "gvdp/io/png.h"
 #include "test_util.h"
 
 namespace gvdp {

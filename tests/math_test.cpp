@@ -2,8 +2,8 @@
 
 #include <random>
 
+#include "gvdp/base/camera.h"
 #include "gvdp/base/ray.h"
-#include "gvdp/render/camera.h"
 
 namespace gvdp {
 

@@ -5,7 +5,7 @@
 #include <thread>
 #include <vector>
 
-#include "gvdp/sched/pt_body.h"
+#include "gvdp/sched/pt/pt_body.h"
 #include "test_util.h"
 
 namespace gvdp {

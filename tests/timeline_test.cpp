@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "gvdp/bench/sequence.h"
+#include "gvdp/io/timeline_export.h"
 #include "gvdp/profile/timeline_cpu.h"
-#include "gvdp/profile/timeline_export.h"
 #include "test_util.h"
 
 namespace gvdp {

@@ -107,7 +107,7 @@ TEST_P(SceneTest, HasMatterAndEmptySpaceNearTheStartCamera) {
       << scene().name;
 }
 
-// DESIGN.md: a brick is EMPTY at a coarse level only if nothing is there at any finer level.
+// docs/DESIGN.md: a brick is EMPTY at a coarse level only if nothing is there at any finer level.
 // Per sample: an empty flag at voxel size V means zero opacity at every finer size v <= V/2
 // within 0.9 V (the farthest a finer sample of that brick can be from its nearest coarse one).
 TEST_P(SceneTest, EmptinessIsConservativeAcrossLevels) {

@@ -1,4 +1,4 @@
-// The gvdp command line: render, scenes, info (DESIGN.md "Command line contract").
+// The gvdp command line: render, scenes, info (docs/DESIGN.md "Command line contract").
 // Library code throws; this is the one place that turns an exception into a message and an
 // exit status: 2 for bad input, 1 for internal failures.
 #include <CLI/CLI.hpp>
@@ -18,7 +18,7 @@
 #include "gvdp/cache/clipmap.h"
 #include "gvdp/io/output_paths.h"
 #include "gvdp/io/stats.h"
-#include "gvdp/profile/timeline_export.h"
+#include "gvdp/io/timeline_export.h"
 #include "gvdp/sched/memory_estimate.h"
 
 namespace gvdp {

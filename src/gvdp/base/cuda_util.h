@@ -1,5 +1,5 @@
 // CUDA helpers for host code of the CUDA backend: error checks that throw with file:line, and
-// one RAII owner of device memory (STYLE.md 5). Included only by CUDA-enabled sources.
+// one RAII owner of device memory (docs/STYLE.md 5). Included only by CUDA-enabled sources.
 #pragma once
 
 #include <cuda_runtime_api.h>

@@ -1,4 +1,4 @@
-// One error policy (STYLE.md 8): host code throws, carrying file:line and the bad value; only
+// One error policy (docs/STYLE.md 8): host code throws, carrying file:line and the bad value; only
 // main() turns an exception into a message and an exit status. InputError is the user's fault
 // (unknown scene, bad size, missing file) and exits with status 2.
 #pragma once

@@ -1,6 +1,6 @@
 // CPU backend of ParallelFor (pbrt-v4 style): a fixed pool of worker threads that runs
 // fn(i) for i in [0, n) in chunks pulled from an atomic counter. The caller thread works too,
-// so a pool of one thread runs everything inline. The CUDA backend's twin is in parallel.cuh.
+// so a pool of one thread runs everything inline.
 #pragma once
 
 #include <atomic>

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "gvdp/render/camera.h"
+#include "gvdp/base/camera.h"
 
 namespace gvdp {
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "gvdp/base/error.h"
-#include "gvdp/sched/graph.h"
+#include "gvdp/sched/graph/graph.h"
 #include "gvdp/sched/memory_estimate.h"
 
 namespace gvdp {

@@ -5,8 +5,8 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/base/parallel.h"
+#include "gvdp/cache/produce.h"
 #include "gvdp/profile/timeline.h"
-#include "gvdp/render/produce.h"
 
 namespace gvdp {
 

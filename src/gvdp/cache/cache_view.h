@@ -1,4 +1,4 @@
-// The brick cache as one POD view over buffers owned by a backend (STYLE.md 5): indirection
+// The brick cache as one POD view over buffers owned by a backend (docs/STYLE.md 5): indirection
 // table (clipmap entries), inverse table, timestamps, free slot list, request queue and the
 // counters the schedulers read. Kernels and CPU tasks take it by value.
 #pragma once

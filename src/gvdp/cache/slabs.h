@@ -1,5 +1,6 @@
 // Host side of the clipmap update: which slabs of which levels the camera left since the last
-// frame (DESIGN.md: "the slabs that leave a level are reset to MISSING and their slots returned").
+// frame (docs/DESIGN.md: "the slabs that leave a level are reset to MISSING and their slots
+// returned").
 #pragma once
 
 #include <cstdlib>

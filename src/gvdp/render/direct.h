@@ -1,4 +1,4 @@
-// The reference renderer's per-pixel body (DESIGN.md "direct"): no cache; every sample
+// The reference renderer's per-pixel body (docs/DESIGN.md "direct"): no cache; every sample
 // evaluates the producer at the 8 voxel centres around it, quantises them to RGBA8 exactly as a
 // brick would store them, and interpolates with the shared trilinear(). Every brick counts as
 // resident, so the samples are those the cache would take, without its empty-space skipping

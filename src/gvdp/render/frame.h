@@ -3,8 +3,8 @@
 // are aligned on it), the camera relative to it, the LOD and the scene.
 #pragma once
 
+#include "gvdp/base/camera.h"
 #include "gvdp/base/ray.h"
-#include "gvdp/render/camera.h"
 #include "gvdp/render/lod.h"
 #include "gvdp/world/scene.h"
 

@@ -1,4 +1,4 @@
-// Level of detail from ray cones (paper 3.1, DESIGN.md "Rendering"). Level L has voxel size
+// Level of detail from ray cones (paper 3.1, docs/DESIGN.md "Rendering"). Level L has voxel size
 // v0 * 2^L and serves the distances where the cone footprint t * pixelAngle lies in
 // (v(L-1), v(L)], so that a voxel is never smaller than a pixel. Samples are a lattice of
 // one-voxel steps per level, restarted at each level's start: sample k of level L sits at

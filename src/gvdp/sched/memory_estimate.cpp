@@ -5,8 +5,8 @@
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/clipmap.h"
 #include "gvdp/render/march.h"
-#include "gvdp/sched/dp.h"
-#include "gvdp/sched/pt_body.h"
+#include "gvdp/sched/dp/dp.h"
+#include "gvdp/sched/pt/pt_body.h"
 
 namespace gvdp {
 namespace {

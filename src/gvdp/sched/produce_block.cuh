@@ -4,8 +4,8 @@
 #pragma once
 
 #include "gvdp/cache/cache_ops.h"
+#include "gvdp/cache/produce.h"
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/render/produce.h"
 
 namespace gvdp {
 

@@ -4,9 +4,9 @@
 // resolve that counts unfinished pixels.
 #pragma once
 
-#include "gvdp/render/cached_access.h"
+#include "gvdp/cache/cached_access.h"
+#include "gvdp/cache/produce.h"
 #include "gvdp/render/frame.h"
-#include "gvdp/render/produce.h"
 #include "gvdp/render/shade.h"
 
 namespace gvdp {

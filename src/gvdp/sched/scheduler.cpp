@@ -5,11 +5,11 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
-#include "gvdp/sched/direct.h"
-#include "gvdp/sched/dp.h"
-#include "gvdp/sched/graph.h"
-#include "gvdp/sched/pt.h"
-#include "gvdp/sched/sp.h"
+#include "gvdp/sched/direct/direct.h"
+#include "gvdp/sched/dp/dp.h"
+#include "gvdp/sched/graph/graph.h"
+#include "gvdp/sched/pt/pt.h"
+#include "gvdp/sched/sp/sp.h"
 
 namespace gvdp {
 

@@ -1,4 +1,4 @@
-// One interface for every scheduler (DESIGN.md "Schedulers"): render one frame of a sequence
+// One interface for every scheduler (docs/DESIGN.md "Schedulers"): render one frame of a sequence
 // into an RGBA8 image and report what it did. All schedulers render the same image on a backend
 // for the same frame sequence; `direct` (no cache) is the reference.
 #pragma once
@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "gvdp/base/image.h"
 #include "gvdp/cache/cache_host.h"
-#include "gvdp/io/image.h"
 #include "gvdp/profile/frame_timeline.h"
 #include "gvdp/render/frame.h"
 

@@ -1,5 +1,5 @@
 // 3D gradient noise (Perlin's improved noise, hashed lattice gradients, quintic fade) with its
-// analytic gradient, for producers that bake shading from the density gradient (DESIGN.md).
+// analytic gradient, for producers that bake shading from the density gradient (docs/DESIGN.md).
 // Lattice reduction happens in double precision so that a world a million units from the
 // origin is as detailed as at the origin; the rest is float.
 #pragma once
@@ -9,7 +9,7 @@
 
 namespace gvdp {
 
-// Bounds used by producers to stay conservative (tests/noise_test.cpp checks them on random
+// Bounds used by producers to stay conservative (tests/world_test.cpp checks them on random
 // points): |noise| <= NOISE_MAX_ABS and |grad noise| <= NOISE_LIPSCHITZ per lattice unit.
 constexpr float NOISE_MAX_ABS = 1.05f;
 constexpr float NOISE_LIPSCHITZ = 3.5f;

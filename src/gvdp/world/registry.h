@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "gvdp/render/camera.h"
+#include "gvdp/base/camera.h"
 #include "gvdp/world/scene.h"
 
 namespace gvdp {

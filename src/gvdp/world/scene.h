@@ -1,4 +1,4 @@
-// The closed set of built-in scenes, dispatched by tag (STYLE.md 4: no virtual calls in device
+// The closed set of built-in scenes, dispatched by tag (docs/STYLE.md 4: no virtual calls in device
 // code). A producer is a deterministic function (world position of a voxel centre, voxel size)
 // -> VoxelSample; CPU and GPU evaluate the very same code.
 #pragma once

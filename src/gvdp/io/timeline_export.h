@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gvdp/io/image.h"
+#include "gvdp/io/png.h"
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp {

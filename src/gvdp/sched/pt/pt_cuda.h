@@ -2,7 +2,7 @@
 #pragma once
 
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/sched/pt_body.h"
+#include "gvdp/sched/pt/pt_body.h"
 
 namespace gvdp {
 

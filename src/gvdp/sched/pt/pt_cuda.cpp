@@ -1,8 +1,8 @@
 #include <vector>
 
-#include "gvdp/sched/pt.h"
-#include "gvdp/sched/pt_cuda.h"
-#include "gvdp/sched/sp_loop_cuda.h"
+#include "gvdp/sched/pt/pt.h"
+#include "gvdp/sched/pt/pt_cuda.h"
+#include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp {
 namespace {

@@ -1,8 +1,8 @@
-#include "gvdp/sched/dp_cuda.h"
+#include "gvdp/sched/dp/dp_cuda.h"
 
-#include "gvdp/sched/dp.h"
-#include "gvdp/sched/sp_cuda.h"
-#include "gvdp/sched/sp_loop_cuda.h"
+#include "gvdp/sched/dp/dp.h"
+#include "gvdp/sched/sp/sp_cuda.h"
+#include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp {
 namespace {

@@ -5,10 +5,10 @@
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/compaction.cuh"
-#include "gvdp/sched/graph_cuda.h"
+#include "gvdp/sched/graph/graph_cuda.h"
 #include "gvdp/sched/produce_block.cuh"
 #include "gvdp/sched/ray_tasks.h"
-#include "gvdp/sched/sp.h"
+#include "gvdp/sched/sp/sp.h"
 
 namespace gvdp {
 namespace {

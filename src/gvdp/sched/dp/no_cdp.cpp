@@ -1,7 +1,7 @@
 // dp on the CUDA backend in a build without CUDA Dynamic Parallelism (GVDP_CDP=OFF, the build
 // compute-sanitizer's racecheck accepts).
 #include "gvdp/base/error.h"
-#include "gvdp/sched/dp.h"
+#include "gvdp/sched/dp/dp.h"
 
 namespace gvdp {
 

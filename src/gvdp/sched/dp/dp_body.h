@@ -4,12 +4,12 @@
 // screen-space bounding box, each thread trying its ray's lock. On the GPU a launch is a CDP2
 // fire-and-forget grid; on the CPU it pushes a task to a queue.
 //
-// Race-free relaunch (DESIGN.md, fixing paper 3.3.3): a ray that stops releases its lock, then
+// Race-free relaunch (docs/DESIGN.md, fixing paper 3.3.3): a ray that stops releases its lock, then
 // re-reads the entry it stopped on; if the brick was published meanwhile, it takes its lock back
 // and goes on. Either the relaunch or the ray itself then holds the lock: no ray is lost.
 #pragma once
 
-#include "gvdp/render/cached_access.h"
+#include "gvdp/cache/cached_access.h"
 #include "gvdp/sched/ray_tasks.h"
 
 namespace gvdp {

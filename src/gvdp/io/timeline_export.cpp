@@ -1,4 +1,4 @@
-#include "gvdp/profile/timeline_export.h"
+#include "gvdp/io/timeline_export.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,7 +1,7 @@
-#include "gvdp/sched/graph_cuda.h"
-#include "gvdp/sched/graph.h"
-#include "gvdp/sched/sp.h"
-#include "gvdp/sched/sp_loop_cuda.h"
+#include "gvdp/sched/graph/graph_cuda.h"
+#include "gvdp/sched/graph/graph.h"
+#include "gvdp/sched/sp/sp.h"
+#include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp {
 namespace {

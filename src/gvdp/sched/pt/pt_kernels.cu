@@ -5,7 +5,7 @@
 // switches kind or finds no work (idle warps are idle on the timeline).
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline_device.cuh"
-#include "gvdp/sched/pt_cuda.h"
+#include "gvdp/sched/pt/pt_cuda.h"
 
 namespace gvdp {
 namespace {

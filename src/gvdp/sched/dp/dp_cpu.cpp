@@ -5,10 +5,10 @@
 #include "gvdp/base/parallel.h"
 #include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/sched/dp.h"
-#include "gvdp/sched/dp_body.h"
-#include "gvdp/sched/sp_loop_cpu.h"
-#include "gvdp/sched/task_queue.h"
+#include "gvdp/sched/dp/dp.h"
+#include "gvdp/sched/dp/dp_body.h"
+#include "gvdp/sched/dp/task_queue.h"
+#include "gvdp/sched/sp/sp_loop_cpu.h"
 
 namespace gvdp {
 namespace {

@@ -2,7 +2,7 @@
 
 #include "gvdp/base/parallel.h"
 #include "gvdp/render/direct.h"
-#include "gvdp/sched/direct.h"
+#include "gvdp/sched/direct/direct.h"
 
 namespace gvdp {
 namespace {

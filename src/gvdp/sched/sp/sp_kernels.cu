@@ -4,7 +4,7 @@
 #include "gvdp/sched/compaction.cuh"
 #include "gvdp/sched/produce_block.cuh"
 #include "gvdp/sched/ray_tasks.h"
-#include "gvdp/sched/sp_cuda.h"
+#include "gvdp/sched/sp/sp_cuda.h"
 
 namespace gvdp {
 namespace {

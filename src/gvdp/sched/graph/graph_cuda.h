@@ -9,7 +9,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/frame.h"
 #include "gvdp/render/march.h"
-#include "gvdp/sched/graph.h"
+#include "gvdp/sched/graph/graph.h"
 
 namespace gvdp {
 

@@ -1,8 +1,9 @@
-// RGBA8 images on the host: PNG write and read (stb), and PSNR for comparing renders.
+// RGBA8 images on the host, what every renderer delivers, and PSNR for comparing renders
+// (files: io/png.h).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace gvdp {
@@ -14,9 +15,6 @@ struct Image {
   Image() = default;
   Image(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * h, 0u) {}
 };
-
-void writePng(const Image& image, const std::string& path);  // throws InputError if unwritable
-Image readPng(const std::string& path);                      // throws InputError
 
 // Peak signal-to-noise ratio over the RGB channels, in dB (infinity when identical).
 double psnr(const Image& a, const Image& b);

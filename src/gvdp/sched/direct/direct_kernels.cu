@@ -1,7 +1,7 @@
 // CUDA kernel of the direct renderer: one thread per pixel in 8x8 tiles, same body as the CPU.
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/render/direct.h"
-#include "gvdp/sched/direct_cuda.h"
+#include "gvdp/sched/direct/direct_cuda.h"
 
 namespace gvdp {
 

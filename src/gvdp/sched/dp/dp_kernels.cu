@@ -1,7 +1,7 @@
 // CUDA kernels of the dp scheduler: render tasks and production tasks that launch each other
 // with CUDA Dynamic Parallelism (CDP2, fire-and-forget streams), as in paper 3.3.
 #include "gvdp/profile/timeline_device.cuh"
-#include "gvdp/sched/dp_cuda.h"
+#include "gvdp/sched/dp/dp_cuda.h"
 #include "gvdp/sched/produce_block.cuh"
 
 namespace gvdp {

@@ -1,7 +1,7 @@
-#include "gvdp/sched/direct_cuda.h"
+#include "gvdp/sched/direct/direct_cuda.h"
 
 #include "gvdp/base/cuda_util.h"
-#include "gvdp/sched/direct.h"
+#include "gvdp/sched/direct/direct.h"
 
 namespace gvdp {
 namespace {

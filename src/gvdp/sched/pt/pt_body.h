@@ -17,7 +17,7 @@
 // it or about to be, so at most pixels + workers ids are out of `freeIds` at once.
 #pragma once
 
-#include "gvdp/render/cached_access.h"
+#include "gvdp/cache/cached_access.h"
 #include "gvdp/sched/ray_tasks.h"
 
 namespace gvdp {

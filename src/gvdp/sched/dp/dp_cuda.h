@@ -2,7 +2,7 @@
 #pragma once
 
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/sched/dp_body.h"
+#include "gvdp/sched/dp/dp_body.h"
 
 namespace gvdp {
 

@@ -5,8 +5,8 @@
 #include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/ray_tasks.h"
-#include "gvdp/sched/sp.h"
-#include "gvdp/sched/sp_loop_cpu.h"
+#include "gvdp/sched/sp/sp.h"
+#include "gvdp/sched/sp/sp_loop_cpu.h"
 
 namespace gvdp {
 

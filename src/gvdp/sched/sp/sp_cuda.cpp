@@ -1,6 +1,6 @@
-#include "gvdp/sched/sp_cuda.h"
-#include "gvdp/sched/sp.h"
-#include "gvdp/sched/sp_loop_cuda.h"
+#include "gvdp/sched/sp/sp_cuda.h"
+#include "gvdp/sched/sp/sp.h"
+#include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp {
 

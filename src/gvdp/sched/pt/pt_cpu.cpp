@@ -4,9 +4,9 @@
 #include "gvdp/base/parallel.h"
 #include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/sched/pt.h"
-#include "gvdp/sched/pt_body.h"
-#include "gvdp/sched/sp_loop_cpu.h"
+#include "gvdp/sched/pt/pt.h"
+#include "gvdp/sched/pt/pt_body.h"
+#include "gvdp/sched/sp/sp_loop_cpu.h"
 
 namespace gvdp {
 namespace {
