@@ -17,8 +17,10 @@
 
 #if defined(__CUDA_ARCH__)
 #define GVDP_IS_GPU_CODE 1
+#define GVDP_UNROLL _Pragma("unroll")  // device code only: the host compiler warns on it
 #else
 #define GVDP_IS_GPU_CODE 0
+#define GVDP_UNROLL
 #endif
 
 namespace gvdp {

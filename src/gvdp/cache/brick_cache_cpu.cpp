@@ -65,18 +65,7 @@ uint32_t BrickCacheCpu::refill() {
 }
 
 void BrickCacheCpu::produce(const SceneParams& scene, const CacheView& cache, const BrickKey& key) {
-  Rgba8 samples[BRICK_SAMPLE_COUNT];
-  bool empty = true;
-  for (int i = 0; i < BRICK_SAMPLE_COUNT; ++i) {
-    VoxelSample v = produceBrickSample(scene, key, i);
-    samples[i] = v.rgba;
-    empty = empty && v.empty;
-  }
-  uint32_t slot = empty ? MAX_SLOTS : takeFreeSlot(cache);
-  if (!empty && slot != MAX_SLOTS)
-    std::memcpy(texels_.data() + static_cast<size_t>(slot) * BRICK_SAMPLE_COUNT, samples,
-                sizeof samples);
-  publishBrick(cache, key, empty, slot);
+  produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, scene, cache, BrickPool{texels_.data()}, key);
 }
 
 CacheView BrickCacheCpu::view() {

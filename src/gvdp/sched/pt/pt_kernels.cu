@@ -4,6 +4,7 @@
 // Timeline records are per warp: a span of consecutive tasks of one kind, closed when the warp
 // switches kind or finds no work (idle warps are idle on the timeline).
 #include "gvdp/base/cuda_util.h"
+#include "gvdp/cache/produce.h"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/pt/pt_cuda.h"
 
@@ -183,20 +184,11 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, uint32_
   __syncwarp();
   bool empty = loadRelaxed32(&bp.nonEmpty[warp]) == 0;
   const Rgba8* stage = bp.stage[warp];
-  uint32_t slot = 0;
-  if (lane == 0) slot = empty ? MAX_SLOTS : takeFreeSlot(ctx.cache);
-  slot = __shfl_sync(FULL_MASK, slot, 0);
-  if (!empty && slot != MAX_SLOTS) {
-    for (int s = lane; s < BRICK_SAMPLE_COUNT; s += 32)
-      pool.write(slot, s, loadRelaxed32(&stage[s]));
-    __threadfence();
-  }
-  __syncwarp();
+  constexpr int PER = (BRICK_SAMPLE_COUNT + 31) / 32;
+  commitBrick<PER>(WarpScope{lane}, ctx.cache, pool, key, empty,
+                   [&](int, int s) { return loadRelaxed32(&stage[s]); });
   uint32_t p = 0;
-  if (lane == 0) {
-    publishBrick(ctx.cache, key, empty, slot);
-    p = closeWaitList(ctx, id);
-  }
+  if (lane == 0) p = closeWaitList(ctx, id);
   p = __shfl_sync(FULL_MASK, p, 0);
   uint32_t relaunched = 0;
   while (p != LIST_END) {  // the list is stable: none of its rays runs until queued
