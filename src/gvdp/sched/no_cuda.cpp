@@ -1,6 +1,7 @@
 // Stand-ins for the CUDA schedulers in builds without CUDA (GVDP_CUDA=OFF); makeScheduler
 // refuses the cuda backend before reaching them.
 #include "gvdp/base/error.h"
+#include "gvdp/profile/frame_clock.h"
 #include "gvdp/sched/direct/direct.h"
 #include "gvdp/sched/dp/dp.h"
 #include "gvdp/sched/graph/graph.h"
@@ -26,6 +27,10 @@ std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions&) {
 }
 
 std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions&) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+std::unique_ptr<FrameClock> makeGpuFrameClock() {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

@@ -45,6 +45,26 @@ void requireBackend(Backend backend) {
   GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
 }
 
+Scheduler::Scheduler(Backend backend)
+    : clock_(backend == Backend::Cuda
+                 ? makeGpuFrameClock()
+                 : std::unique_ptr<FrameClock>(std::make_unique<CpuFrameClock>())) {}
+
+Scheduler::~Scheduler() = default;
+
+FrameStats Scheduler::render(const FrameSetup& frame, Image& out) {
+  FrameStats stats;
+  stats.index = frame.frameIndex;
+  prepareFrame(frame);
+  if (timeline_) timeline_->begin();
+  clock_->start();
+  renderFrame(frame, out, stats);
+  stats.ms = clock_->stopMs();
+  if (timeline_) stats.timeline = timeline_->end();
+  finishFrame(frame, out, stats);
+  return stats;
+}
+
 GraphDriver graphDriverFromEnvironment() {
   const char* v = std::getenv("GVDP_GRAPH_LOOP");
   std::string value = v ? v : "device";

@@ -10,6 +10,7 @@
 
 #include "gvdp/base/image.h"
 #include "gvdp/cache/cache_host.h"
+#include "gvdp/profile/frame_clock.h"
 #include "gvdp/profile/frame_timeline.h"
 #include "gvdp/render/frame.h"
 
@@ -57,27 +58,37 @@ inline uint32_t poolBricksOf(const SchedulerOptions& o) {
   return o.backend == Backend::Cuda ? DEFAULT_POOL_BRICKS_CUDA : DEFAULT_POOL_BRICKS_CPU;
 }
 
+// A scheduler renders the frames of a sequence. render() keeps the books of every frame (index,
+// clock, timeline) around the scheduler's own steps: prepareFrame (before the clock: allocations
+// that follow the frame size), renderFrame (timed and recorded: the frame's work, up to the
+// resolved image on the backend), finishFrame (after the clock: the image to the host, counters).
 class Scheduler {
  public:
-  virtual ~Scheduler() = default;
+  explicit Scheduler(Backend backend);
+  virtual ~Scheduler();
   // Records the timeline of the following frames into FrameStats::timeline.
   void recordTimeline(std::unique_ptr<FrameTimeline> t) { timeline_ = std::move(t); }
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
-  virtual FrameStats render(const FrameSetup& frame, Image& out) = 0;
+  FrameStats render(const FrameSetup& frame, Image& out);
   // Bytes of every structure the scheduler holds (after the last frame).
   virtual MemoryReport memory() const = 0;
 
  protected:
-  void timelineBegin() {
-    if (timeline_) timeline_->begin();
-  }
-  void timelineEnd(FrameStats& s) {
-    if (timeline_) s.timeline = timeline_->end();
-  }
+  virtual void prepareFrame(const FrameSetup&) {}
+  virtual void renderFrame(const FrameSetup& frame, Image& out, FrameStats& stats) = 0;
+  virtual void finishFrame(const FrameSetup&, Image&, FrameStats&) {}
 
  private:
+  std::unique_ptr<FrameClock> clock_;
   std::unique_ptr<FrameTimeline> timeline_;
 };
+
+// What every cached scheduler reports of its cache after a frame.
+template <class Cache>
+void addCacheStats(Cache& cache, FrameStats& stats) {
+  stats.cache = cache.frameStats();
+  stats.degraded = stats.degraded || cache.degraded();
+}
 
 // Throws InputError when the backend is not available (no CUDA build or no device).
 void requireBackend(Backend backend);

@@ -8,28 +8,25 @@ namespace {
 
 class DirectCuda final : public Scheduler {
  public:
-  FrameStats render(const FrameSetup& frame, Image& out) override {
-    size_t n = static_cast<size_t>(frame.pixelCount());
-    if (image_.size() != n) image_ = DeviceBuffer<uint32_t>(n);
-    timelineBegin();
-    timer_.start();
-    launchDirect(frame, image_.data(), nullptr);
-    GVDP_CUDA_CHECK(cudaGetLastError());
-    timer_.stop();
-    FrameStats s;
-    s.index = frame.frameIndex;
-    s.ms = timer_.ms();
-    timelineEnd(s);
-    out = Image(frame.width, frame.height);
-    GVDP_CUDA_CHECK(cudaMemcpy(out.pixels.data(), image_.data(), n * 4, cudaMemcpyDeviceToHost));
-    return s;
-  }
-
+  DirectCuda() : Scheduler(Backend::Cuda) {}
   MemoryReport memory() const override { return {}; }
 
  private:
+  void prepareFrame(const FrameSetup& frame) override {
+    size_t n = static_cast<size_t>(frame.pixelCount());
+    if (image_.size() != n) image_ = DeviceBuffer<uint32_t>(n);
+  }
+  void renderFrame(const FrameSetup& frame, Image&, FrameStats&) override {
+    launchDirect(frame, image_.data(), nullptr);
+    GVDP_CUDA_CHECK(cudaGetLastError());
+  }
+  void finishFrame(const FrameSetup& frame, Image& out, FrameStats&) override {
+    out = Image(frame.width, frame.height);
+    GVDP_CUDA_CHECK(
+        cudaMemcpy(out.pixels.data(), image_.data(), image_.bytes(), cudaMemcpyDeviceToHost));
+  }
+
   DeviceBuffer<uint32_t> image_;
-  GpuTimer timer_;
 };
 
 }  // namespace

@@ -1,5 +1,4 @@
 #include <atomic>
-#include <chrono>
 #include <vector>
 
 #include "gvdp/base/parallel.h"
@@ -40,20 +39,23 @@ struct CpuLauncher {
   }
 };
 
-class DpCpu final : public Scheduler {
+class DpCpu final : public SpFrameCpu {
  public:
   explicit DpCpu(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CPU),
+      : SpFrameCpu(o),
         pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES) {}
 
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    timelineBegin();
-    auto t0 = std::chrono::steady_clock::now();
-    FrameStats stats;
-    stats.index = f.frameIndex;
-    cache_.beginFrame(f);
+  MemoryReport memory() const override {
+    MemoryReport m = SpFrameCpu::memory();
+    m.push_back({"ray_locks", locks_.size() * sizeof(uint32_t)});
+    m.push_back({"task_queue", dpCpuTaskQueueBytes(pendingLaunches_)});
+    return m;
+  }
+
+ private:
+  void renderFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
+    beginRays(f);
     size_t n = static_cast<size_t>(f.pixelCount());
-    payload_.assign(n, initialRayState());
     locks_.assign(n, RAY_FREE);
     uint32_t counters[DP_COUNTER_COUNT] = {};
     CacheView view = cache_.view();
@@ -96,26 +98,13 @@ class DpCpu final : public Scheduler {
         NO_RECORD);
     sweep(f, stats);
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
-    stats.degraded = cache_.degraded() || counters[DP_LAUNCH_FAILURES] != 0 ||
+    addCacheStats(cache_, stats);
+    stats.degraded = stats.degraded || counters[DP_LAUNCH_FAILURES] != 0 ||
                      cache_.counters()[COUNTER_FAILED] != 0;
-    stats.cache = cache_.frameStats();
-    stats.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     stats.launches = counters[DP_PRODUCTIONS] + counters[DP_RELAUNCHES];
     stats.launchFailures = counters[DP_LAUNCH_FAILURES];
-    timelineEnd(stats);
-    return stats;
   }
 
-  MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
-    m.push_back({"ray_locks", locks_.size() * sizeof(uint32_t)});
-    m.push_back({"task_queue", dpCpuTaskQueueBytes(pendingLaunches_)});
-    return m;
-  }
-
- private:
   // Safety net: rays the task schedule left unfinished go through the sp loop.
   void sweep(const FrameSetup& f, FrameStats& stats) {
     live_.clear();
@@ -130,9 +119,7 @@ class DpCpu final : public Scheduler {
                  false, stats);
   }
 
-  BrickCacheCpu cache_;
   size_t pendingLaunches_;
-  std::vector<RayState> payload_;
   std::vector<uint32_t> locks_, live_, next_;
 };
 

@@ -7,10 +7,10 @@
 namespace gvdp {
 namespace {
 
-class DpCuda final : public Scheduler {
+class DpCuda final : public SpFrameCuda {
  public:
   explicit DpCuda(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
+      : SpFrameCuda(o),
         pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES),
         locks_(0),
         counters_(DP_COUNTER_COUNT) {
@@ -21,18 +21,24 @@ class DpCuda final : public Scheduler {
     cdpBytes_ = free0 > free1 ? free0 - free1 : 0;
   }
 
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    FrameStats stats;
-    stats.index = f.frameIndex;
-    size_t n = static_cast<size_t>(f.pixelCount());
-    buffers_.resize(n);
-    if (locks_.size() != n) locks_ = DeviceBuffer<uint32_t>(n);
-    size_t freeBefore = 0, freeAfter = 0, total = 0;
-    if (firstFrame_) GVDP_CUDA_CHECK(cudaMemGetInfo(&freeBefore, &total));
+  MemoryReport memory() const override {
+    MemoryReport m = SpFrameCuda::memory();
+    m.push_back({"ray_locks", locks_.bytes()});
+    m.push_back({"cdp_pending_launch_buffer", cdpBytes_});
+    return m;
+  }
 
-    timelineBegin();
+ private:
+  void prepareFrame(const FrameSetup& f) override {
+    SpFrameCuda::prepareFrame(f);
+    size_t n = static_cast<size_t>(f.pixelCount());
+    if (locks_.size() != n) locks_ = DeviceBuffer<uint32_t>(n);
+    size_t total = 0;
+    if (firstFrame_) GVDP_CUDA_CHECK(cudaMemGetInfo(&freeBefore_, &total));
+  }
+
+  void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("dp frame");
-    timer_.start();
     cache_.beginFrame(f);
     GVDP_CUDA_CHECK(cudaMemset(locks_.data(), 0, locks_.bytes()));  // RAY_FREE
     GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));
@@ -49,34 +55,24 @@ class DpCuda final : public Scheduler {
     GVDP_CUDA_CHECK(cudaGetLastError());
     sweep(f, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
-    timer_.stop();
-    stats.ms = timer_.ms();
-    timelineEnd(stats);
-    if (firstFrame_) {
+  }
+
+  void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
+    if (firstFrame_) {  // what the device runtime took for the first frame's launches
+      size_t freeAfter = 0, total = 0;
       GVDP_CUDA_CHECK(cudaMemGetInfo(&freeAfter, &total));
-      cdpBytes_ += freeBefore > freeAfter ? freeBefore - freeAfter : 0;
+      cdpBytes_ += freeBefore_ > freeAfter ? freeBefore_ - freeAfter : 0;
       firstFrame_ = false;
     }
-    downloadImage(f, buffers_, out);
+    SpFrameCuda::finishFrame(f, out, stats);
     uint32_t c[DP_COUNTER_COUNT];
     GVDP_CUDA_CHECK(cudaMemcpy(c, counters_.data(), sizeof c, cudaMemcpyDeviceToHost));
     stats.launches = c[DP_PRODUCTIONS] + c[DP_RELAUNCHES];
     stats.launchFailures = c[DP_LAUNCH_FAILURES];
     stats.deferred = c[DP_DEFERRED];
-    stats.cache = cache_.frameStats();
-    stats.degraded = cache_.degraded() || stats.cache.failed != 0 || stats.launchFailures != 0;
-    return stats;
+    stats.degraded = stats.degraded || stats.cache.failed != 0 || stats.launchFailures != 0;
   }
 
-  MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
-    m.push_back({"ray_locks", locks_.bytes()});
-    m.push_back({"cdp_pending_launch_buffer", cdpBytes_});
-    return m;
-  }
-
- private:
   // Rays the device-side schedule left unfinished (refused launches, deferred productions) are
   // finished by the sp loop; with the race-free relaunch there are none otherwise.
   void sweep(const FrameSetup& f, FrameStats& stats) {
@@ -90,12 +86,9 @@ class DpCuda final : public Scheduler {
     if (unfinished) runSpLoopCuda(f, cache_, buffers_, unfinished, false, stats);
   }
 
-  BrickCacheCuda cache_;
   uint32_t pendingLaunches_;
-  SpBuffersCuda buffers_;
   DeviceBuffer<uint32_t> locks_, counters_;
-  GpuTimer timer_;
-  size_t cdpBytes_ = 0;
+  size_t cdpBytes_ = 0, freeBefore_ = 0;
   bool firstFrame_ = true;
 };
 

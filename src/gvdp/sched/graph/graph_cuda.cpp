@@ -6,22 +6,18 @@
 namespace gvdp {
 namespace {
 
-class GraphCuda final : public Scheduler {
+class GraphCuda final : public SpFrameCuda {
  public:
   explicit GraphCuda(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
+      : SpFrameCuda(o),
         loop_(1),
         driver_(graphDriverFromEnvironment()),
         exec_(buildSpGraph(loop_.data(), driver_)) {}
   ~GraphCuda() override { cudaGraphExecDestroy(exec_); }
 
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    FrameStats stats;
-    stats.index = f.frameIndex;
-    buffers_.resize(static_cast<size_t>(f.pixelCount()));
-    timelineBegin();
+ private:
+  void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("graph frame");
-    timer_.start();
     cache_.beginFrame(f);
     GraphFrame g{f, cache_.view(), cache_.pool(), buffers_.payload.data()};
     GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0, 0};
@@ -34,22 +30,8 @@ class GraphCuda final : public Scheduler {
     stats.passes = static_cast<int>(loop.passes);
     if (loop.exit != GRAPH_DONE) finishOnHost(f, loop, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
-    timer_.stop();
-    stats.ms = timer_.ms();
-    timelineEnd(stats);
-    downloadImage(f, buffers_, out);
-    stats.degraded = cache_.degraded();
-    stats.cache = cache_.frameStats();
-    return stats;
   }
 
-  MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
-    return m;
-  }
-
- private:
   // What sp does between passes when the device cannot: refill the free slot list (or degrade
   // the frame), then the rest of the frame through the host-driven sp loop.
   void finishOnHost(const FrameSetup& f, const GraphLoop& loop, FrameStats& stats) {
@@ -59,12 +41,9 @@ class GraphCuda final : public Scheduler {
     runSpLoopCuda(f, cache_, buffers_, loop.liveCount, false, stats);
   }
 
-  BrickCacheCuda cache_;
-  SpBuffersCuda buffers_;
   DeviceBuffer<GraphLoop> loop_;
   GraphDriver driver_;
   cudaGraphExec_t exec_;
-  GpuTimer timer_;
 };
 
 }  // namespace

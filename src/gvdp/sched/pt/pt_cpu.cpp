@@ -1,4 +1,3 @@
-#include <chrono>
 #include <vector>
 
 #include "gvdp/base/parallel.h"
@@ -11,37 +10,12 @@
 namespace gvdp {
 namespace {
 
-class PtCpu final : public Scheduler {
+class PtCpu final : public SpFrameCpu {
  public:
-  explicit PtCpu(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CPU) {}
-
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    timelineBegin();
-    auto t0 = std::chrono::steady_clock::now();
-    FrameStats stats;
-    stats.index = f.frameIndex;
-    cache_.beginFrame(f);
-    PtContext ctx = prepare(f);
-    BrickPool pool{cache_.texels()};
-    ThreadPool& threads = ThreadPool::global();
-    threads.run(
-        threads.size(), 1, [&](int64_t, int64_t, int worker) { work(ctx, pool, worker); },
-        NO_RECORD);
-    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
-    stats.cache = cache_.frameStats();
-    stats.degraded = cache_.degraded() || stats.cache.failed != 0;
-    stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
-    stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
-    stats.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    timelineEnd(stats);
-    return stats;
-  }
+  explicit PtCpu(const SchedulerOptions& o) : SpFrameCpu(o) {}
 
   MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
+    MemoryReport m = SpFrameCpu::memory();
     m.push_back({"pt_queues_and_wait_lists",
                  (raySlots_.size() + taskSlots_.size() + freeSlots_.size()) * sizeof(uint64_t) +
                      (waitHead_.size() + waitNext_.size() + counters_.size()) * sizeof(uint32_t) +
@@ -50,10 +24,24 @@ class PtCpu final : public Scheduler {
   }
 
  private:
+  void renderFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
+    beginRays(f);
+    PtContext ctx = prepare(f);
+    BrickPool pool{cache_.texels()};
+    ThreadPool& threads = ThreadPool::global();
+    threads.run(
+        threads.size(), 1, [&](int64_t, int64_t, int worker) { work(ctx, pool, worker); },
+        NO_RECORD);
+    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
+    addCacheStats(cache_, stats);
+    stats.degraded = stats.degraded || stats.cache.failed != 0;
+    stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
+    stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
+  }
+
   PtContext prepare(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
     uint32_t ids = n + static_cast<uint32_t>(ThreadPool::global().size());
-    payload_.assign(n, initialRayState());
     auto initRing = [](std::vector<uint64_t>& slots, uint32_t capacity, uint32_t filled) {
       slots.resize(capacity);
       for (uint32_t i = 0; i < capacity; ++i) slots[i] = ringInitialSlot(i, filled);
@@ -108,8 +96,6 @@ class PtCpu final : public Scheduler {
     }
   }
 
-  BrickCacheCpu cache_;
-  std::vector<RayState> payload_;
   std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_;
   std::vector<uint32_t> waitHead_, waitNext_, counters_;
   std::vector<BrickKey> taskKey_;

@@ -7,20 +7,28 @@
 namespace gvdp {
 namespace {
 
-class PtCuda final : public Scheduler {
+class PtCuda final : public SpFrameCuda {
  public:
   explicit PtCuda(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA),
+      : SpFrameCuda(o),
         counters_(PT_COUNTER_COUNT * PT_COUNTER_STRIDE),
         blocks_(ptWorkerBlocks()) {}
 
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    FrameStats stats;
-    stats.index = f.frameIndex;
+  MemoryReport memory() const override {
+    MemoryReport m = SpFrameCuda::memory();
+    m.push_back({"pt_queues_and_wait_lists",
+                 raySlots_.bytes() + taskSlots_.bytes() + freeSlots_.bytes() + taskKey_.bytes() +
+                     waitHead_.bytes() + waitNext_.bytes() + counters_.bytes()});
+    return m;
+  }
+
+ private:
+  void prepareFrame(const FrameSetup& f) override {
+    SpFrameCuda::prepareFrame(f);
     resize(f);
-    timelineBegin();
+  }
+  void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("pt frame");
-    timer_.start();
     cache_.beginFrame(f);
     PtContext ctx = prepare(f);
     {
@@ -29,33 +37,19 @@ class PtCuda final : public Scheduler {
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
     stats.unfinishedPixels = resolveCuda(f, buffers_);
-    timer_.stop();
-    stats.ms = timer_.ms();
-    timelineEnd(stats);
-    downloadImage(f, buffers_, out);
+  }
+  void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
+    SpFrameCuda::finishFrame(f, out, stats);
     std::vector<uint32_t> c(counters_.size());
     GVDP_CUDA_CHECK(
         cudaMemcpy(c.data(), counters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost));
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
     stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
-    stats.cache = cache_.frameStats();
-    stats.degraded = cache_.degraded() || stats.cache.failed != 0;
-    return stats;
+    stats.degraded = stats.degraded || stats.cache.failed != 0;
   }
 
-  MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
-    m.push_back({"pt_queues_and_wait_lists",
-                 raySlots_.bytes() + taskSlots_.bytes() + freeSlots_.bytes() + taskKey_.bytes() +
-                     waitHead_.bytes() + waitNext_.bytes() + counters_.bytes()});
-    return m;
-  }
-
- private:
   void resize(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
-    buffers_.resize(n);
     if (waitNext_.size() == n) return;
     ids_ = n + static_cast<uint32_t>(blocks_) * 8;  // pixels + worker warps (pt_body.h)
     raySlots_ = DeviceBuffer<uint64_t>(ringCapacity(n));
@@ -83,14 +77,11 @@ class PtCuda final : public Scheduler {
     return ctx;
   }
 
-  BrickCacheCuda cache_;
-  SpBuffersCuda buffers_;
   DeviceBuffer<uint32_t> counters_, waitHead_, waitNext_;
   DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_;
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
   uint32_t ids_ = 0;
-  GpuTimer timer_;
 };
 
 }  // namespace

@@ -1,4 +1,3 @@
-#include <chrono>
 #include <vector>
 
 #include "gvdp/base/parallel.h"
@@ -73,43 +72,43 @@ int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out) {
   return unfinished;
 }
 
+SpFrameCpu::SpFrameCpu(const SchedulerOptions& o)
+    : Scheduler(Backend::Cpu), cache_(poolBricksOf(o)) {}
+
+MemoryReport SpFrameCpu::memory() const {
+  MemoryReport m = cache_.memory();
+  m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
+  return m;
+}
+
+void SpFrameCpu::beginRays(const FrameSetup& f) {
+  cache_.beginFrame(f);
+  payload_.assign(static_cast<size_t>(f.pixelCount()), initialRayState());
+}
+
 namespace {
 
-class SpCpu final : public Scheduler {
+class SpCpu final : public SpFrameCpu {
  public:
-  explicit SpCpu(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CPU) {}
-
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    timelineBegin();
-    auto t0 = std::chrono::steady_clock::now();
-    FrameStats stats;
-    stats.index = f.frameIndex;
-    cache_.beginFrame(f);
-    size_t n = static_cast<size_t>(f.pixelCount());
-    payload_.assign(n, initialRayState());
-    live_.resize(n);
-    next_.resize(n);
-    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, 0, true, stats);
-    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
-    stats.degraded = cache_.degraded();
-    stats.cache = cache_.frameStats();
-    stats.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    timelineEnd(stats);
-    return stats;
-  }
+  explicit SpCpu(const SchedulerOptions& o) : SpFrameCpu(o) {}
 
   MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload", payload_.size() * sizeof(RayState)});
+    MemoryReport m = SpFrameCpu::memory();
     m.push_back({"live_ray_lists", (live_.size() + next_.size()) * sizeof(uint32_t)});
     return m;
   }
 
  private:
-  BrickCacheCpu cache_;
-  std::vector<RayState> payload_;
+  void renderFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
+    beginRays(f);
+    size_t n = static_cast<size_t>(f.pixelCount());
+    live_.resize(n);
+    next_.resize(n);
+    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, 0, true, stats);
+    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
+    addCacheStats(cache_, stats);
+  }
+
   std::vector<uint32_t> live_, next_;
 };
 

@@ -58,42 +58,34 @@ void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out) {
       cudaMemcpy(out.pixels.data(), b.image.data(), b.image.bytes(), cudaMemcpyDeviceToHost));
 }
 
+MemoryReport SpFrameCuda::memory() const {
+  MemoryReport m = cache_.memory();
+  m.push_back({"ray_payload_lists_image", buffers_.bytes()});
+  return m;
+}
+
+void SpFrameCuda::prepareFrame(const FrameSetup& f) {
+  buffers_.resize(static_cast<size_t>(f.pixelCount()));
+}
+
+void SpFrameCuda::finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) {
+  downloadImage(f, buffers_, out);
+  addCacheStats(cache_, stats);
+}
+
 namespace {
 
-class SpCuda final : public Scheduler {
+class SpCuda final : public SpFrameCuda {
  public:
-  explicit SpCuda(const SchedulerOptions& o)
-      : cache_(o.poolBricks ? o.poolBricks : DEFAULT_POOL_BRICKS_CUDA) {}
+  explicit SpCuda(const SchedulerOptions& o) : SpFrameCuda(o) {}
 
-  FrameStats render(const FrameSetup& f, Image& out) override {
-    FrameStats stats;
-    stats.index = f.frameIndex;
-    buffers_.resize(static_cast<size_t>(f.pixelCount()));
-    timelineBegin();
+ private:
+  void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("sp frame");
-    timer_.start();
     cache_.beginFrame(f);
     runSpLoopCuda(f, cache_, buffers_, 0, true, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
-    timer_.stop();
-    stats.ms = timer_.ms();
-    timelineEnd(stats);
-    downloadImage(f, buffers_, out);
-    stats.degraded = cache_.degraded();
-    stats.cache = cache_.frameStats();
-    return stats;
   }
-
-  MemoryReport memory() const override {
-    MemoryReport m = cache_.memory();
-    m.push_back({"ray_payload_lists_image", buffers_.bytes()});
-    return m;
-  }
-
- private:
-  BrickCacheCuda cache_;
-  SpBuffersCuda buffers_;
-  GpuTimer timer_;
 };
 
 }  // namespace

@@ -6,11 +6,10 @@
 #include <vector>
 
 #include "gvdp/cache/brick_cache_cpu.h"
+#include "gvdp/render/march.h"
 #include "gvdp/sched/scheduler.h"
 
 namespace gvdp {
-
-struct RayState;
 
 // Runs passes until no ray is left. With `tiled`, the first pass covers every pixel in 8x8
 // tiles from a fresh state; otherwise it resumes the `liveCount` rays of `live`. Bricks already
@@ -21,5 +20,19 @@ void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
 
 // Resolves every pixel to `out`; returns the unfinished ones.
 int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out);
+
+// The frame of every cached CPU scheduler (sp, dp, pt): the brick cache and one ray payload per
+// pixel, both begun afresh by beginRays(); memory() reports them, derived schedulers add theirs.
+class SpFrameCpu : public Scheduler {
+ public:
+  explicit SpFrameCpu(const SchedulerOptions& o);
+  MemoryReport memory() const override;
+
+ protected:
+  void beginRays(const FrameSetup& f);
+
+  BrickCacheCpu cache_;
+  std::vector<RayState> payload_;
+};
 
 }  // namespace gvdp

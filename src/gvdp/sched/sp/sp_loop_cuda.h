@@ -30,6 +30,23 @@ struct SpBuffersCuda {
 void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b, uint32_t liveCount,
                    bool tiled, FrameStats& stats);
 
+// The frame of every cached CUDA scheduler around the sp loop's buffers (sp, graph; dp and pt
+// add their own): the brick cache and the buffers sized before the clock, the image downloaded
+// and the cache's statistics reported after it. Derived schedulers write renderFrame.
+class SpFrameCuda : public Scheduler {
+ public:
+  explicit SpFrameCuda(const SchedulerOptions& o)
+      : Scheduler(Backend::Cuda), cache_(poolBricksOf(o)) {}
+  MemoryReport memory() const override;
+
+ protected:
+  void prepareFrame(const FrameSetup& f) override;
+  void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override;
+
+  BrickCacheCuda cache_;
+  SpBuffersCuda buffers_;
+};
+
 // Resolves to b.image; returns the unfinished pixels.
 int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b);
 void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out);
