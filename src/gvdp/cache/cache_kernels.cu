@@ -2,55 +2,21 @@
 #include <cub/device/device_radix_sort.cuh>
 
 #include "gvdp/cache/cache_kernels.h"
-#include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/profile/parallel_for.cuh"
 
 namespace gvdp {
-namespace {
-
-constexpr int BLOCK = 256;
-inline unsigned blocksFor(uint32_t n) {
-  return (n + BLOCK - 1) / BLOCK;
-}
-
-__global__ void resetSlabsKernel(CacheView cache, SlabJobs jobs) {
-  BlockTimer timer(TaskKind::Cache);
-  uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < jobs.total()) resetSlabItem(cache, jobs, i);
-}
-
-__global__ void prepareLruSortKernel(const uint32_t* timestamps, uint32_t* keys, uint32_t* values,
-                                     uint32_t n) {
-  BlockTimer timer(TaskKind::Cache);
-  uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) {
-    keys[i] = timestamps[i];
-    values[i] = i;
-  }
-}
-
-__global__ void countOlderKernel(const uint32_t* sortedKeys, uint32_t n, uint32_t frame,
-                                 uint32_t* count) {
-  BlockTimer timer(TaskKind::Cache);
-  uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  // Sorted ascending: the keys below `frame` are a prefix; its last element writes the length.
-  if (i < n && sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame)) *count = i + 1;
-}
-
-__global__ void unmapSlotsKernel(CacheView cache, const uint32_t* slots, uint32_t n) {
-  BlockTimer timer(TaskKind::Cache);
-  uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) unmapSlot(cache, slots[i]);
-}
-
-}  // namespace
 
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs) {
-  if (jobs.total()) resetSlabsKernel<<<blocksFor(jobs.total()), BLOCK>>>(cache, jobs);
+  parallelForCuda("cache: reset slabs", jobs.total(), TaskKind::Cache,
+                  [=] __device__(uint32_t i) { resetSlabItem(cache, jobs, i); });
 }
 
 void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values,
                           uint32_t n) {
-  prepareLruSortKernel<<<blocksFor(n), BLOCK>>>(timestamps, keys, values, n);
+  parallelForCuda("cache: LRU sort keys", n, TaskKind::Cache, [=] __device__(uint32_t i) {
+    keys[i] = timestamps[i];
+    values[i] = i;
+  });
 }
 
 size_t lruSortTempBytes(uint32_t n) {
@@ -68,11 +34,15 @@ void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* key
 }
 
 void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count) {
-  if (n) countOlderKernel<<<blocksFor(n), BLOCK>>>(sortedKeys, n, frame, count);
+  // Sorted ascending: the keys below `frame` are a prefix; its last element writes the length.
+  parallelForCuda("cache: count older", n, TaskKind::Cache, [=] __device__(uint32_t i) {
+    if (sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame)) *count = i + 1;
+  });
 }
 
 void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n) {
-  if (n) unmapSlotsKernel<<<blocksFor(n), BLOCK>>>(cache, slots, n);
+  parallelForCuda("cache: unmap slots", n, TaskKind::Cache,
+                  [=] __device__(uint32_t i) { unmapSlot(cache, slots[i]); });
 }
 
 }  // namespace gvdp

@@ -1,5 +1,6 @@
 // CUDA kernels of the sp scheduler: render passes (Algorithm 1 over the tiled screen, then over
 // the compacted list of stopped rays), production (Algorithm 2, one block per brick) and resolve.
+#include "gvdp/profile/parallel_for.cuh"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/compaction.cuh"
 #include "gvdp/sched/produce_block.cuh"
@@ -49,16 +50,6 @@ __global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, u
   appendStopped(unfinished, static_cast<uint32_t>(pixel), live, &passCounters[0]);
 }
 
-__global__ void resolveKernel(FrameSetup f, const RayState* payload, uint32_t* image,
-                              uint32_t* passCounters) {
-  BlockTimer timer(TaskKind::Resolve);
-  int pixel = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-  if (pixel >= f.pixelCount()) return;
-  bool unfinished = false;
-  image[pixel] = resolveRay(f, payload, pixel, &unfinished);
-  if (unfinished) atomicAdd(&passCounters[1], 1u);
-}
-
 }  // namespace
 
 void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
@@ -88,8 +79,12 @@ void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint3
 
 void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
                    uint32_t* passCounters) {
-  unsigned n = static_cast<unsigned>(f.pixelCount());
-  resolveKernel<<<(n + 255) / 256, 256>>>(f, payload, image, passCounters);
+  parallelForCuda("resolve", static_cast<uint32_t>(f.pixelCount()), TaskKind::Resolve,
+                  [=] __device__(uint32_t pixel) {
+                    bool unfinished = false;
+                    image[pixel] = resolveRay(f, payload, static_cast<int>(pixel), &unfinished);
+                    if (unfinished) atomicAdd(&passCounters[1], 1u);
+                  });
 }
 
 }  // namespace gvdp

@@ -1,0 +1,31 @@
+// The GPU twin of parallelFor (base/parallel.h): fn(i) for every i in [0, n), one launch of a
+// grid-stride kernel sized by occupancy (at most the blocks resident on the device at once),
+// under an NVTX range and recorded on the timeline as `kind`, one record per block. For
+// element-wise work only: lanes past n leave the loop, so fn must not need the whole warp.
+#pragma once
+
+#include <algorithm>
+
+#include "gvdp/base/cuda_util.h"
+#include "gvdp/profile/timeline_device.cuh"
+
+namespace gvdp {
+
+template <class Fn>
+__global__ void parallelForKernel(uint32_t n, TaskKind kind, Fn fn) {
+  BlockTimer timer(kind);
+  for (uint32_t i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
+    fn(i);
+}
+
+template <class Fn>
+void parallelForCuda(const char* name, uint32_t n, TaskKind kind, Fn fn) {
+  constexpr int BLOCK = 256;
+  if (n == 0) return;
+  NvtxRange range(name);
+  static const int resident = residentBlocks(parallelForKernel<Fn>, BLOCK);
+  uint32_t blocks = std::min<uint32_t>((n + BLOCK - 1) / BLOCK, static_cast<uint32_t>(resident));
+  parallelForKernel<<<blocks, BLOCK>>>(n, kind, fn);
+}
+
+}  // namespace gvdp
