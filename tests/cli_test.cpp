@@ -196,6 +196,23 @@ TEST(Cli, PtRenderReportsItsTasksInStats) {
   nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_GT(j["frames"][0]["launches"].get<int>(), 0);
   EXPECT_EQ(j["frames"][0]["unfinished_pixels"], 0);
+  EXPECT_EQ(j["pool_bricks"], DEFAULT_POOL_BRICKS_CPU) << "the pool really used, not 0";
+  EXPECT_FALSE(j.contains("pending_launches")) << "pt has no pending-launch buffer";
+  std::filesystem::remove_all(dir);
+}
+
+// stats.json reports the configuration as used: dp's defaults resolved, --pool-mb in bricks.
+TEST(Cli, StatsReportTheResolvedConfiguration) {
+  std::string dir = test::tempDir("cli_resolved");
+  test::CommandResult r = test::runGvdp(
+      "render --backend cpu --scheduler dp --scene perlin --width 32 --height 20 --frames 1 "
+      "--pool-mb 64 --out " +
+      dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(dir + "/stats.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["pool_bricks"], 64 * 1024 * 1024 / (BRICK_SAMPLE_COUNT * 4));
+  EXPECT_EQ(j["pending_launches"], DEFAULT_PENDING_LAUNCHES);
   std::filesystem::remove_all(dir);
 }
 

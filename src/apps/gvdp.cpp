@@ -145,6 +145,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
   o.scheduler.timeline = !f.timeline.empty();
+  o.scheduler = resolvedOptions(o.scheduler);
   validate(o);
   checkResources(o, poolFlag(f));
   return o;

@@ -24,7 +24,7 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   s.width = o.width;
   s.height = o.height;
   s.frames = o.warmup + o.frames;
-  s.scheduler = {o.backend, k, o.poolBricks};
+  s.scheduler = resolvedOptions({o.backend, k, o.poolBricks});
   return s;
 }
 

@@ -18,7 +18,9 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   j["width"] = o.width;
   j["height"] = o.height;
   j["levels"] = o.levels;
-  j["pool_bricks"] = o.scheduler.poolBricks;
+  if (o.scheduler.kind != SchedulerKind::Direct) j["pool_bricks"] = poolBricksOf(o.scheduler);
+  if (o.scheduler.kind == SchedulerKind::Dp)
+    j["pending_launches"] = resolvedOptions(o.scheduler).pendingLaunches;
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
   nlohmann::json mem = nlohmann::json::object();
   for (const MemoryItem& m : memory) mem[m.name] = m.bytes;
