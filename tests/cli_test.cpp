@@ -31,6 +31,11 @@ std::string readFile(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+nlohmann::json readStats(const std::string& dir) {
+  std::ifstream in(dir + "/stats.json");
+  return nlohmann::json::parse(in);
+}
+
 uint64_t physicalMemoryBytes() {
   return static_cast<uint64_t>(sysconf(_SC_PHYS_PAGES)) *
          static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
@@ -192,8 +197,7 @@ TEST(Cli, PtRenderReportsItsTasksInStats) {
       dir);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("relaunched rays"), std::string::npos) << r.output;
-  std::ifstream in(dir + "/stats.json");
-  nlohmann::json j = nlohmann::json::parse(in);
+  nlohmann::json j = readStats(dir);
   EXPECT_GT(j["frames"][0]["launches"].get<int>(), 0);
   EXPECT_EQ(j["frames"][0]["unfinished_pixels"], 0);
   EXPECT_EQ(j["pool_bricks"], DEFAULT_POOL_BRICKS_CPU) << "the pool really used, not 0";
@@ -209,8 +213,7 @@ TEST(Cli, StatsReportTheResolvedConfiguration) {
       "--pool-mb 64 --out " +
       dir);
   ASSERT_EQ(r.status, 0) << r.output;
-  std::ifstream in(dir + "/stats.json");
-  nlohmann::json j = nlohmann::json::parse(in);
+  nlohmann::json j = readStats(dir);
   EXPECT_EQ(j["pool_bricks"], 64 * 1024 * 1024 / (BRICK_SAMPLE_COUNT * 4));
   EXPECT_EQ(j["pending_launches"], DEFAULT_PENDING_LAUNCHES);
   std::filesystem::remove_all(dir);
@@ -225,13 +228,13 @@ TEST(Cli, RenderWritesFramesAndStats) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0000.png"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0001.png"));
-  std::ifstream in(dir + "/stats.json");
-  nlohmann::json j = nlohmann::json::parse(in);
+  nlohmann::json j = readStats(dir);
   ASSERT_EQ(j["frames"].size(), 2u);
   EXPECT_EQ(j["frames"][1]["index"], 1);
   EXPECT_GT(j["frames"][0]["ms"].get<double>(), 0.0);
   EXPECT_EQ(j["frames"][0]["unfinished_pixels"], 0);
   EXPECT_EQ(j["scene"], "aligned-spheres");
+  EXPECT_FALSE(j.contains("pool_bricks")) << "direct has no pool";
   EXPECT_NE(r.output.find("FPS"), std::string::npos);
   std::filesystem::remove_all(dir);
 }

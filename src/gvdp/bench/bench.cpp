@@ -35,14 +35,8 @@ BenchOptions scaleOptions(const BenchOptions& o, const int size[2]) {
   return so;
 }
 
-void validateCell(const SequenceOptions& s) {
-  validate(s);
-  checkResources(s);
-}
-
 BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
-  SequenceOptions s = cellSequence(o, scene, m, k);
-  validateCell(s);
+  SequenceOptions s = cellSequence(o, scene, m, k);  // checked by validate(BenchOptions)
   std::unique_ptr<Scheduler> scheduler = makeScheduler(s.scheduler);
   Image image;
   BenchCell c{};
@@ -83,13 +77,17 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
 void validate(const BenchOptions& o) {
   GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),
                    "empty --scenes, --movements or --schedulers");
+  for (const std::string& scene : o.scenes) findScene(scene);
   // Sizes and memory depend on the scheduler and the frame size, not on the scene or the path.
-  for (SchedulerKind k : o.schedulers)
-    validateCell(cellSequence(o, o.scenes[0], o.movements[0], k));
+  auto check = [](const SequenceOptions& s) {
+    validate(s);
+    checkResources(s);
+  };
+  for (SchedulerKind k : o.schedulers) check(cellSequence(o, o.scenes[0], o.movements[0], k));
   if (o.scale)
     for (const auto& size : SCALE_SIZES)
-      validateCell(cellSequence(scaleOptions(o, size), o.scenes[0], Movement::Walkthrough,
-                                SchedulerKind::Dp));
+      check(cellSequence(scaleOptions(o, size), o.scenes[0], Movement::Walkthrough,
+                         SchedulerKind::Dp));
 }
 
 BenchResults runBench(const BenchOptions& o,

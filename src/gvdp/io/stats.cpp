@@ -18,9 +18,9 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   j["width"] = o.width;
   j["height"] = o.height;
   j["levels"] = o.levels;
-  if (o.scheduler.kind != SchedulerKind::Direct) j["pool_bricks"] = poolBricksOf(o.scheduler);
-  if (o.scheduler.kind == SchedulerKind::Dp)
-    j["pending_launches"] = resolvedOptions(o.scheduler).pendingLaunches;
+  SchedulerOptions used = resolvedOptions(o.scheduler);  // 0: the scheduler has none
+  if (used.poolBricks) j["pool_bricks"] = used.poolBricks;
+  if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
   nlohmann::json mem = nlohmann::json::object();
   for (const MemoryItem& m : memory) mem[m.name] = m.bytes;

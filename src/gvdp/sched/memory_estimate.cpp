@@ -54,7 +54,7 @@ void addCpuRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
       m.push_back({"ray_locks", list});
       m.push_back(
           {"task_queue",
-           dpCpuTaskQueueBytes(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES)});
+           dpCpuTaskQueueBytes(pendingLaunchesOf(o))});
       m.push_back({"sweep_ray_lists", 2 * list});
       break;
     case SchedulerKind::Pt:

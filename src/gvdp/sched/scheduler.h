@@ -62,14 +62,17 @@ inline uint32_t poolBricksOf(const SchedulerOptions& o) {
 // clock, timeline) around the scheduler's own steps: prepareFrame (before the clock: allocations
 // that follow the frame size), renderFrame (timed and recorded: the frame's work, up to the
 // resolved image on the backend), finishFrame (after the clock: the image to the host, counters).
+// dp's pending-launch buffer (the default for 0).
+inline uint32_t pendingLaunchesOf(const SchedulerOptions& o) {
+  return o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES;
+}
+
 // The options with every default made explicit, as the scheduler will use them: the backend's
 // pool (0 for direct, which has none) and dp's pending launches (0 for the others). Resolved
 // once, at the top (the command line, the benchmark), and reported as used (stats.json).
 inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.poolBricks = o.kind == SchedulerKind::Direct ? 0 : poolBricksOf(o);
-  o.pendingLaunches = o.kind != SchedulerKind::Dp ? 0
-                      : o.pendingLaunches         ? o.pendingLaunches
-                                                  : DEFAULT_PENDING_LAUNCHES;
+  o.pendingLaunches = o.kind == SchedulerKind::Dp ? pendingLaunchesOf(o) : 0;
   return o;
 }
 

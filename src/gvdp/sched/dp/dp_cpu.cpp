@@ -43,7 +43,7 @@ class DpCpu final : public SpFrameCpu {
  public:
   explicit DpCpu(const SchedulerOptions& o)
       : SpFrameCpu(o),
-        pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES) {}
+        pendingLaunches_(pendingLaunchesOf(o)) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();

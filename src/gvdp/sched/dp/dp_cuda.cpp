@@ -11,7 +11,7 @@ class DpCuda final : public SpFrameCuda {
  public:
   explicit DpCuda(const SchedulerOptions& o)
       : SpFrameCuda(o),
-        pendingLaunches_(o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES),
+        pendingLaunches_(pendingLaunchesOf(o)),
         locks_(0),
         counters_(DP_COUNTER_COUNT) {
     size_t free0 = 0, free1 = 0, total = 0;
