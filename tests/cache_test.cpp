@@ -6,6 +6,7 @@
 
 #include "gvdp/cache/brick_cache_cpu.h"
 #include "gvdp/cache/cached_access.h"
+#include "gvdp/cache/produce.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/world/registry.h"
 
@@ -13,9 +14,15 @@ namespace gvdp {
 
 namespace {
 
+// Algorithm 2 for one brick of perlin on this thread.
+void produce(BrickCacheCpu& cache, const CacheView& view, const BrickKey& key) {
+  produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, findScene("perlin").world, view, cache.pool(),
+                                   key);
+}
+
 FrameSetup frameAt(Vec3d position, int index) {
   const SceneInfo& scene = findScene("perlin");
-  return makeFrame({position, 0.3f, 0.0f}, scene.params, 64, 40, 5, index);
+  return makeFrame({position, 0.3f, 0.0f}, scene.world.voxelSize0(), 64, 40, 5, index);
 }
 
 // Every resident slot is mapped by exactly one in-window entry and maps back to it; nothing is
@@ -55,7 +62,7 @@ void touchRandomBricks(BrickCacheCpu& c, const FrameSetup& f, std::mt19937& rng,
     // The queue holds one request per ray of a pass: produce in batches below that.
     if (c.counters()[COUNTER_REQUESTS] + 1 >= v.requestCapacity || i + 1 == n) {
       uint32_t requests = c.counters()[COUNTER_REQUESTS];
-      for (uint32_t r = 0; r < requests; ++r) c.produce(f.scene, v, c.requests()[r]);
+      for (uint32_t r = 0; r < requests; ++r) produce(c, v, c.requests()[r]);
       c.clearRequests();
     }
   }
@@ -95,7 +102,7 @@ TEST(Cache, SlabsLeavingTheWindowAreResetAndTheirSlotsFreed) {
   for (int z = -4; z <= 4; ++z)
     for (int y = -4; y <= 4; ++y)
       for (int x = -4; x <= 4; ++x)
-        cache.produce(f0.scene, v, {m.globalBrick(0, centre + Vec3i{x, y, z}), 0});
+        produce(cache, v, {m.globalBrick(0, centre + Vec3i{x, y, z}), 0});
   std::vector<BrickKey> level0;
   for (uint32_t s = 0; s < cache.poolBricks(); ++s)
     if (cache.inverse()[s].level == 0) level0.push_back(cache.inverse()[s]);
@@ -127,8 +134,8 @@ TEST(Cache, BrickBordersAreSeamless) {
     for (int x = -3; x <= 3 && tested < 200; ++x) {
       Vec3i a{x, y, 0}, b{x + 1, y, 0};
       BrickKey ka{m.globalBrick(level, a), level}, kb{m.globalBrick(level, b), level};
-      cache.produce(f.scene, v, ka);
-      cache.produce(f.scene, v, kb);
+      produce(cache, v, ka);
+      produce(cache, v, kb);
       uint32_t sa = cache.entries()[m.entryIndex(level, ka.brick)];
       uint32_t sb = cache.entries()[m.entryIndex(level, kb.brick)];
       if (!isSlot(sa) || !isSlot(sb)) continue;

@@ -73,8 +73,7 @@ TEST(Lod, ClipmapWindowHoldsEverySampleOfItsLevel) {
 }
 
 TEST(Frame, PrimaryRaysSpanTheFieldOfView) {
-  SceneParams scene{SceneKind::Perlin, 0.0625f, 1};
-  FrameSetup f = makeFrame({{1e6, 5.0, -3e5}, 0.0f, 0.0f}, scene, 200, 100, 8, 0, 90.0f);
+  FrameSetup f = makeFrame({{1e6, 5.0, -3e5}, 0.0f, 0.0f}, 0.0625f, 200, 100, 8, 0, 90.0f);
   Ray left = f.primaryRay(0, 50), right = f.primaryRay(199, 50), centre = f.primaryRay(100, 50);
   EXPECT_NEAR(std::acos(dot(left.d, right.d)), 0.5f * PI, 0.02f);
   EXPECT_GT(centre.d.z, 0.99f);

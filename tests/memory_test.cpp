@@ -20,7 +20,7 @@ TEST(MemoryEstimate, MatchesWhatTheCpuSchedulersHold) {
     o.scheduler = {Backend::Cpu, kind, 2000, 1000};
     FrameSetup frame = frameOf(o, 0);
     MemoryReport estimate = memoryEstimate(o.scheduler, frame);
-    std::unique_ptr<Scheduler> s = makeScheduler(o.scheduler);
+    std::unique_ptr<Scheduler> s = test::schedulerFor(o);
     Image image;
     s->render(frame, image);
     for (const MemoryItem& held : s->memory()) {

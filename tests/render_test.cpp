@@ -5,6 +5,7 @@
 
 #include "gvdp/bench/sequence.h"
 #include "gvdp/render/shade.h"
+#include "test_util.h"
 
 namespace gvdp {
 
@@ -16,7 +17,7 @@ Image renderOne(const std::string& scene, int w, int h, Vec3d origin = {0, 0, 0}
   o.height = h;
   o.origin = origin;
   o.scheduler.kind = SchedulerKind::Direct;
-  std::unique_ptr<Scheduler> s = makeScheduler(o.scheduler);
+  std::unique_ptr<Scheduler> s = test::schedulerFor(o);
   Image image;
   FrameStats stats = s->render(frameOf(o, frame), image);
   EXPECT_EQ(stats.unfinishedPixels, 0);

@@ -61,7 +61,7 @@ TEST(Sp, StillCameraProducesNothingAfterTheFirstFrame) {
   o.width = 64;
   o.height = 40;
   o.scheduler = {Backend::Cpu, SchedulerKind::Sp};
-  std::unique_ptr<Scheduler> s = makeScheduler(o.scheduler);
+  std::unique_ptr<Scheduler> s = test::schedulerFor(o);
   FrameSetup frame = frameOf(o, 0);
   Image first, second;
   FrameStats a = s->render(frame, first), b = s->render(frame, second);

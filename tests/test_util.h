@@ -9,6 +9,7 @@
 
 #include "gvdp/base/gpu.h"
 #include "gvdp/bench/sequence.h"
+#include "gvdp/sched/builtin_producer.h"
 
 namespace gvdp::test {
 
@@ -16,6 +17,12 @@ struct CommandResult {
   int status;
   std::string output;  // stdout and stderr together
 };
+
+// The scheduler of a sequence's options over its built-in scene, for tests that drive frames
+// (FrameSetup) themselves.
+inline std::unique_ptr<Scheduler> schedulerFor(const SequenceOptions& o) {
+  return makeScheduler(o.scheduler, builtinProducerKernels(findScene(o.scene).world));
+}
 
 // The gvdp binary under test: $GVDP_BIN when set (binaries carried to another machine), else the
 // one built beside the tests.

@@ -77,8 +77,8 @@ TEST_P(SceneTest, ProducerGivesThePinnedWorld) {
   uint64_t h = 14695981039346656037ull;
   for (int i = 0; i < 1000; ++i) {
     Vec3d p = scene().start.position + Vec3d{u(rng), u(rng), u(rng)};
-    float vs = scene().params.voxelSize0 * static_cast<float>(1 << (i % 8));
-    VoxelSample v = produceVoxel(scene().params, p, vs);
+    float vs = scene().world.voxelSize0() * static_cast<float>(1 << (i % 8));
+    VoxelSample v = scene().world.voxel(p, vs);
     h = hashWord(hashWord(h, v.rgba), v.empty);
     if (v.empty) {
       EXPECT_EQ(v.rgba >> 24, 0u) << "an empty sample must be transparent";
@@ -96,14 +96,14 @@ TEST_P(SceneTest, HasMatterAndEmptySpaceNearTheStartCamera) {
   const int N = 4000;
   for (int i = 0; i < N; ++i) {
     Vec3d p = scene().start.position + Vec3d{u(rng), u(rng), u(rng)};
-    VoxelSample s = produceVoxel(scene().params, p, scene().params.voxelSize0);
+    VoxelSample s = scene().world.voxel(p, scene().world.voxelSize0());
     matter += (s.rgba >> 24) > 0;
     empty += s.empty;
   }
   EXPECT_GT(matter, N / 50) << scene().name;
   EXPECT_GT(empty, N / 10) << scene().name;
   // The eye itself is in empty space.
-  EXPECT_TRUE(produceVoxel(scene().params, scene().start.position, scene().params.voxelSize0).empty)
+  EXPECT_TRUE(scene().world.voxel(scene().start.position, scene().world.voxelSize0()).empty)
       << scene().name;
 }
 
@@ -115,25 +115,25 @@ TEST_P(SceneTest, EmptinessIsConservativeAcrossLevels) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int tested = 0;
   for (int level = 1; level < 8; ++level) {
-    float V = scene().params.voxelSize0 * static_cast<float>(1 << level);
+    float V = scene().world.voxelSize0() * static_cast<float>(1 << level);
     double spread = 40.0 * V;
     int found = 0;
     for (int i = 0; i < 40000 && found < 150; ++i) {
       Vec3d c = scene().start.position + Vec3d{u(rng) * spread, u(rng) * spread, u(rng) * spread};
-      if (!produceVoxel(scene().params, c, V).empty) continue;
+      if (!scene().world.voxel(c, V).empty) continue;
       // Only coarse samples near matter make the test bite: look for a sample with matter
       // within 16 voxels.
       bool nearMatter = false;
       for (int k = 0; k < 8 && !nearMatter; ++k) {
         Vec3d q = c + Vec3d{u(rng), u(rng), u(rng)} * (16.0 * V);
-        nearMatter = (produceVoxel(scene().params, q, V).rgba >> 24) > 0;
+        nearMatter = (scene().world.voxel(q, V).rgba >> 24) > 0;
       }
       if (!nearMatter) continue;
       ++found;
       for (int k = 0; k < 40; ++k) {
         float v = V / static_cast<float>(2 << (k % 3));
         Vec3d q = c + Vec3d{u(rng), u(rng), u(rng)} * (0.9 * V / std::sqrt(3.0));
-        ASSERT_EQ(produceVoxel(scene().params, q, v).rgba >> 24, 0u)
+        ASSERT_EQ(scene().world.voxel(q, v).rgba >> 24, 0u)
             << scene().name << ": empty at voxel size " << V << " but matter at " << v;
         ++tested;
       }
@@ -151,7 +151,7 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SceneTest, ::testing::Range(0, SCENE_COUNT),
                          });
 
 TEST(Registry, FindsScenesByNameAndRejectsUnknownOnes) {
-  EXPECT_EQ(findScene("forest").params.kind, SceneKind::Forest);
+  EXPECT_EQ(findScene("forest").world.kind, SceneKind::Forest);
   EXPECT_EQ(allScenes().size(), 5u);
   try {
     findScene("moon");

@@ -375,7 +375,7 @@ int runScenes() {
   for (const SceneInfo& s : allScenes())
     std::printf("%-16s %s\n%16s voxel size %.4g, start (%.1f, %.1f, %.1f), %.2f units/frame\n",
                 std::string(s.name).c_str(), std::string(s.description).c_str(), "",
-                s.params.voxelSize0, s.start.position.x, s.start.position.y, s.start.position.z,
+                s.world.voxelSize0(), s.start.position.x, s.start.position.y, s.start.position.z,
                 s.speed);
   return 0;
 }

@@ -1,5 +1,7 @@
 #include "gvdp/base/gpu.h"
 
+#include "gvdp/base/error.h"
+
 #if GVDP_HAS_CUDA
 #include <cuda_runtime_api.h>
 #endif
@@ -38,6 +40,12 @@ std::optional<uint64_t> cudaFreeMemoryBytes() {
     return std::nullopt;
   return freeBytes;
 }
+void copyDeviceAsync(void* dst, const void* src, size_t bytes, void* stream) {
+  cudaError_t e =
+      cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, static_cast<cudaStream_t>(stream));
+  if (e != cudaSuccess)
+    throw Error(std::string("device image copy failed: ") + cudaGetErrorString(e));
+}
 #else
 bool cudaBuilt() {
   return false;
@@ -50,6 +58,9 @@ std::string cudaDeviceSummary() {
 }
 std::optional<uint64_t> cudaFreeMemoryBytes() {
   return std::nullopt;
+}
+void copyDeviceAsync(void*, const void*, size_t, void*) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 #endif
 

@@ -2,6 +2,7 @@
 // CUDA backend and whether a device is present at run time (GPU tests skip when not).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -14,5 +15,7 @@ bool cudaDeviceAvailable();
 std::string cudaDeviceSummary();
 // Free memory of the current device (cudaMemGetInfo); nullopt without a device.
 std::optional<uint64_t> cudaFreeMemoryBytes();
+// Enqueues a device-to-device copy on `stream` (a cudaStream_t); throws in builds without CUDA.
+void copyDeviceAsync(void* dst, const void* src, size_t bytes, void* stream);
 
 }  // namespace gvdp

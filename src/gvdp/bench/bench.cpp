@@ -37,7 +37,7 @@ BenchOptions scaleOptions(const BenchOptions& o, const int size[2]) {
 
 BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
   SequenceOptions s = cellSequence(o, scene, m, k);  // checked by validate(BenchOptions)
-  std::unique_ptr<Scheduler> scheduler = makeScheduler(s.scheduler);
+  std::unique_ptr<Renderer> renderer = makeRenderer(scene, rendererOptions(s));
   Image image;
   BenchCell c{};
   c.scene = scene;
@@ -46,7 +46,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   uint64_t bricks = 0;
   for (int f = 0; f < s.frames; ++f) {
     auto t0 = std::chrono::steady_clock::now();
-    FrameStats st = scheduler->render(frameOf(s, f), image);
+    FrameStats st = renderer->render(poseOf(s, f), image);
     double wall =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (f < o.warmup) continue;
@@ -58,7 +58,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   // The floor: the first measured frames again, from the cache the path has filled.
   std::vector<double> floor;
   for (int f = o.warmup; f < o.warmup + std::min(o.floorFrames, o.frames); ++f)
-    floor.push_back(scheduler->render(frameOf(s, f), image).ms);
+    floor.push_back(renderer->render(poseOf(s, f), image).ms);
   FrameTimeStats t = frameTimeStats(c.frameMs);
   c.avgFps = t.avgFps;
   c.low1Fps = t.low1Fps;
@@ -67,7 +67,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.medianWallMs = frameTimeStats(c.frameWallMs).medianMs;
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
-  c.memory = scheduler->memory();
+  c.memory = renderer->memory();
   for (const MemoryItem& item : c.memory) c.memoryBytes += item.bytes;
   return c;
 }

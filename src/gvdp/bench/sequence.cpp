@@ -3,31 +3,20 @@
 #include <cstdio>
 
 #include "gvdp/base/error.h"
-#include "gvdp/sched/graph/graph.h"
 #include "gvdp/sched/memory_estimate.h"
 
 namespace gvdp {
 
 void validate(const SequenceOptions& o) {
   findScene(o.scene);
-  GVDP_INPUT_CHECK(o.width >= 8 && o.width <= 16384, "bad --width ", o.width,
-                   " (expected 8..16384)");
-  GVDP_INPUT_CHECK(o.height >= 8 && o.height <= 16384, "bad --height ", o.height,
-                   " (expected 8..16384)");
-  GVDP_INPUT_CHECK(static_cast<int64_t>(o.width) * o.height <= 64ll << 20, "bad size ", o.width,
-                   "x", o.height, " (at most 64 Mpixels)");
+  validate(rendererOptions(o));
   GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 1000000, "bad --frames ", o.frames,
                    " (expected 1..1000000)");
-  GVDP_INPUT_CHECK(o.levels >= 1 && o.levels <= MAX_LEVELS, "bad --levels ", o.levels,
-                   " (expected 1..", MAX_LEVELS, ")");
-  GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
-                   " (expected 1..150 degrees)");
   const double LIMIT = 1e8;  // int32 brick coordinates at level 0 hold about 2.7e8 units
   GVDP_INPUT_CHECK(
       std::abs(o.origin.x) < LIMIT && std::abs(o.origin.y) < LIMIT && std::abs(o.origin.z) < LIMIT,
       "bad --origin ", o.origin.x, ",", o.origin.y, ",", o.origin.z,
       " (each coordinate within 1e8)");
-  if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
 }
 
 namespace {
@@ -60,25 +49,33 @@ void checkResources(const SequenceOptions& o, const std::string& what) {
                    cuda ? " of device memory free" : " of memory available");
 }
 
-FrameSetup frameOf(const SequenceOptions& o, int frame) {
+RendererOptions rendererOptions(const SequenceOptions& o) {
+  return {o.scheduler, o.width, o.height, o.levels, o.fovDegrees};
+}
+
+CameraPose poseOf(const SequenceOptions& o, int frame) {
   const SceneInfo& scene = findScene(o.scene);
   CameraPose start = scene.start;
   start.position = start.position + o.origin;
-  CameraPose pose = cameraAt(o.movement, start, scene.speed, frame);
-  return makeFrame(pose, scene.params, o.width, o.height, o.levels, frame, o.fovDegrees);
+  return cameraAt(o.movement, start, scene.speed, frame);
+}
+
+FrameSetup frameOf(const SequenceOptions& o, int frame) {
+  return makeFrame(poseOf(o, frame), findScene(o.scene).world.voxelSize0(), o.width, o.height,
+                   o.levels, frame, o.fovDegrees);
 }
 
 MemoryReport renderSequence(const SequenceOptions& o,
                             const std::function<void(const Image&, const FrameStats&)>& onFrame) {
   validate(o);
   checkResources(o);
-  std::unique_ptr<Scheduler> scheduler = makeScheduler(o.scheduler);
+  std::unique_ptr<Renderer> renderer = makeRenderer(o.scene, rendererOptions(o));
   Image image;
   for (int f = 0; f < o.frames; ++f) {
-    FrameStats stats = scheduler->render(frameOf(o, f), image);
+    FrameStats stats = renderer->render(poseOf(o, f), image);
     onFrame(image, stats);
   }
-  return scheduler->memory();
+  return renderer->memory();
 }
 
 }  // namespace gvdp

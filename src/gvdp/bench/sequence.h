@@ -1,12 +1,13 @@
-// A frame sequence: a scene, a camera movement and a scheduler, rendered frame by frame. The
-// `render` command, the tests and the benchmark all go through here.
+// A frame sequence: a built-in scene, a camera movement and a renderer's options, rendered frame
+// by frame through the public Renderer (include/gvdp/renderer.h). The `render` command, the
+// tests and the benchmark all go through here.
 #pragma once
 
 #include <functional>
 #include <string>
 
 #include "gvdp/bench/paths.h"
-#include "gvdp/sched/scheduler.h"
+#include "gvdp/renderer.h"
 #include "gvdp/world/registry.h"
 
 namespace gvdp {
@@ -30,6 +31,9 @@ void validate(const SequenceOptions& options);
 // configuration in the message, e.g. "--pool-mb 190000" (default: scheduler, size and pool).
 void checkResources(const SequenceOptions& options, const std::string& what = "");
 
+RendererOptions rendererOptions(const SequenceOptions& options);
+CameraPose poseOf(const SequenceOptions& options, int frame);
+// The frame a renderer makes of poseOf(options, frame) as its frame number `frame`.
 FrameSetup frameOf(const SequenceOptions& options, int frame);
 
 // Renders every frame in order (after validate() and checkResources()); onFrame sees each image

@@ -5,7 +5,7 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/base/parallel.h"
-#include "gvdp/cache/produce.h"
+#include "gvdp/cache/cache_ops.h"
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp {
@@ -62,10 +62,6 @@ uint32_t BrickCacheCpu::refill() {
       static_cast<uint8_t>(TaskKind::Cache));
   ++refills_;
   return n;
-}
-
-void BrickCacheCpu::produce(const SceneParams& scene, const CacheView& cache, const BrickKey& key) {
-  produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, scene, cache, BrickPool{texels_.data()}, key);
 }
 
 CacheView BrickCacheCpu::view() {

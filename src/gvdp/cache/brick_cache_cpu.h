@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "gvdp/cache/cache_host.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/render/frame.h"
-#include "gvdp/world/scene.h"
 #include "gvdp/world/voxel.h"
 
 namespace gvdp {
@@ -22,9 +22,7 @@ class BrickCacheCpu {
   uint32_t refill();
 
   CacheView view();
-  // Algorithm 2 for one requested brick on the calling worker: the 10^3 samples, the empty
-  // AND, a slot, the samples, then the entry. `cache` is a view() taken for this pass.
-  void produce(const SceneParams& scene, const CacheView& cache, const BrickKey& key);
+  BrickPool pool() { return BrickPool{texels_.data()}; }
   const uint32_t* counters() const { return counters_; }
   void setDegraded(bool d) { degraded_ = d; }
   bool degraded() const { return degraded_; }

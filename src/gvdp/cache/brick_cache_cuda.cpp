@@ -27,6 +27,7 @@ void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
   NvtxRange range("cache: clipmap move and LRU refill");
   ClipmapTracker::Update u = tracker_.next(frame);
   clipmap_ = u.clipmap;
+  timeline_ = frame.timeline;
   GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));
   degraded_ = false;
   ++frame_;
@@ -38,7 +39,7 @@ void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
     GVDP_CUDA_CHECK(cudaMemset(inverse_.data(), 0xff, inverse_.bytes()));  // level NO_LEVEL
     resident_ = 0;
   } else {
-    launchResetSlabs(view(), u.slabs);
+    launchResetSlabs(view(), u.slabs, timeline_);
   }
   size_t rays = static_cast<size_t>(frame.pixelCount());
   if (requests_.size() < rays) requests_ = DeviceBuffer<BrickKey>(rays);
@@ -47,19 +48,20 @@ void BrickCacheCuda::beginFrame(const FrameSetup& frame) {
 }
 
 uint32_t BrickCacheCuda::refill() {
-  launchPrepareLruSort(timestamps_.data(), sortKeysIn_.data(), sortValuesIn_.data(), poolBricks_);
+  launchPrepareLruSort(timestamps_.data(), sortKeysIn_.data(), sortValuesIn_.data(), poolBricks_,
+                       timeline_);
   int endBit = std::max(1, static_cast<int>(std::bit_width(frame_)));
   lruSort(sortTemp_.data(), sortTemp_.size(), sortKeysIn_.data(), sortKeysOut_.data(),
           sortValuesIn_.data(), sortValuesOut_.data(), poolBricks_, endBit);
   GVDP_CUDA_CHECK(cudaMemset(freeCount_.data(), 0, freeCount_.bytes()));
-  launchCountOlder(sortKeysOut_.data(), poolBricks_, 1u, freeCount_.data());
-  launchCountOlder(sortKeysOut_.data(), poolBricks_, frame_, freeCount_.data() + 1);
+  launchCountOlder(sortKeysOut_.data(), poolBricks_, 1u, freeCount_.data(), timeline_);
+  launchCountOlder(sortKeysOut_.data(), poolBricks_, frame_, freeCount_.data() + 1, timeline_);
   uint32_t counts[2];
   GVDP_CUDA_CHECK(cudaMemcpy(counts, freeCount_.data(), sizeof counts, cudaMemcpyDeviceToHost));
   freeCountHost_ = freeListLength(poolBricks_, counts[0], counts[1]);
   GVDP_CUDA_CHECK(cudaMemset(counters_.data() + COUNTER_FREE_NEXT, 0, sizeof(uint32_t)));
   // The free slot list is the head of the sorted slots (oldest first).
-  launchUnmapSlots(view(), sortValuesOut_.data(), freeCountHost_);
+  launchUnmapSlots(view(), sortValuesOut_.data(), freeCountHost_, timeline_);
   GVDP_CUDA_CHECK(cudaGetLastError());
   ++refills_;
   return freeCountHost_;

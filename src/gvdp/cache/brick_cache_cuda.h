@@ -39,6 +39,7 @@ class BrickCacheCuda {
   DeviceBuffer<uint8_t> sortTemp_;
   DeviceBuffer<Rgba8> texels_;
   BrickPool pool_{};
+  TimelineView timeline_{};  // the frame's (beginFrame)
   uint32_t freeCountHost_ = 0, frame_ = 0, refills_ = 0;
   uint64_t resident_ = 0;
   bool degraded_ = false;

@@ -6,14 +6,14 @@
 
 namespace gvdp {
 
-void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs) {
-  parallelForCuda("cache: reset slabs", jobs.total(), TaskKind::Cache,
+void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline) {
+  parallelForCuda("cache: reset slabs", jobs.total(), timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { resetSlabItem(cache, jobs, i); });
 }
 
-void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values,
-                          uint32_t n) {
-  parallelForCuda("cache: LRU sort keys", n, TaskKind::Cache, [=] __device__(uint32_t i) {
+void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n,
+                          const TimelineView& timeline) {
+  parallelForCuda("cache: LRU sort keys", n, timeline, TaskKind::Cache, [=] __device__(uint32_t i) {
     keys[i] = timestamps[i];
     values[i] = i;
   });
@@ -33,15 +33,17 @@ void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* key
                                   endBit);
 }
 
-void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count) {
+void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
+                      const TimelineView& timeline) {
   // Sorted ascending: the keys below `frame` are a prefix; its last element writes the length.
-  parallelForCuda("cache: count older", n, TaskKind::Cache, [=] __device__(uint32_t i) {
+  parallelForCuda("cache: count older", n, timeline, TaskKind::Cache, [=] __device__(uint32_t i) {
     if (sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame)) *count = i + 1;
   });
 }
 
-void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n) {
-  parallelForCuda("cache: unmap slots", n, TaskKind::Cache,
+void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
+                      const TimelineView& timeline) {
+  parallelForCuda("cache: unmap slots", n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { unmapSlot(cache, slots[i]); });
 }
 

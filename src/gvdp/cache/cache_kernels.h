@@ -1,20 +1,25 @@
-// Launchers of the CUDA cache maintenance kernels (cache_kernels.cu), all on the default stream.
+// Launchers of the CUDA cache maintenance kernels (cache_kernels.cu), all on the default stream,
+// recorded on `timeline` (the frame's, FrameSetup::timeline).
 #pragma once
 
 #include <cstddef>
 
 #include "gvdp/cache/cache_ops.h"
+#include "gvdp/profile/timeline.h"
 
 namespace gvdp {
 
-void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs);
+void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline);
 // keys[i] = timestamps[i], values[i] = i.
-void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n);
+void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n,
+                          const TimelineView& timeline);
 size_t lruSortTempBytes(uint32_t n);
 void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* keysOut,
              const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit);
 // *count = how many of the first n sorted keys are below frame.
-void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count);
-void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n);
+void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
+                      const TimelineView& timeline);
+void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
+                      const TimelineView& timeline);
 
 }  // namespace gvdp

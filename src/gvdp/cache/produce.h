@@ -10,7 +10,7 @@
 #include "gvdp/cache/brick_key.h"
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/render/brick_pool.h"
-#include "gvdp/world/scene.h"
+#include "gvdp/world/producer.h"
 
 namespace gvdp {
 
@@ -31,10 +31,21 @@ GVDP_HD GVDP_INLINE Vec3d brickSampleCentre(const BrickKey& key, int sample, flo
   return {centre(key.brick.x, i.x), centre(key.brick.y, i.y), centre(key.brick.z, i.z)};
 }
 
-GVDP_HD GVDP_INLINE VoxelSample produceBrickSample(const SceneParams& scene, const BrickKey& key,
+template <class P>
+GVDP_HD GVDP_INLINE VoxelSample produceBrickSample(const P& producer, const BrickKey& key,
                                                    int sample) {
-  float vs = ldexpf(scene.voxelSize0, key.level);
-  return produceVoxel(scene, brickSampleCentre(key, sample, scene.voxelSize0), vs);
+  float vs = ldexpf(producer.voxelSize0(), key.level);
+  return producer.voxel(brickSampleCentre(key, sample, producer.voxelSize0()), vs);
+}
+
+// The producer's emptiness bound for the box of a brick's samples widened by one voxel (the
+// reach of the empty-flag contract, world/producer.h): true makes the brick EMPTY unevaluated.
+template <class P>
+GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& key) {
+  double vs = ldexp(static_cast<double>(producer.voxelSize0()), key.level);
+  Vec3d lo = brickSampleCentre(key, 0, producer.voxelSize0());
+  Vec3d hi = brickSampleCentre(key, BRICK_SAMPLE_COUNT - 1, producer.voxelSize0());
+  return producer.emptyBox(lo - Vec3d{vs, vs, vs}, hi + Vec3d{vs, vs, vs}, static_cast<float>(vs));
 }
 
 // Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with
@@ -63,19 +74,20 @@ GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const CacheView& cache,
 }
 
 // Algorithm 2 whole, by a group that keeps its samples in registers: member r evaluates the
-// samples r + k * size (k < PER), the group ANDs the empty flags and commits.
-template <int PER, class Scope>
-GVDP_HD GVDP_INLINE void produceBrick(const Scope& group, const SceneParams& scene,
-                                      const CacheView& cache, const BrickPool& pool,
-                                      const BrickKey& key) {
+// samples r + k * size (k < PER) unless the producer's box bound clears the brick, the group ANDs
+// the empty flags and commits.
+template <int PER, class Scope, class P>
+GVDP_HD GVDP_INLINE void produceBrick(const Scope& group, const P& producer, const CacheView& cache,
+                                      const BrickPool& pool, const BrickKey& key) {
   Rgba8 values[PER];
+  bool bounded = brickBoundedEmpty(producer, key);  // the same answer in every member
   bool empty = true;
   GVDP_UNROLL
   for (int k = 0; k < PER; ++k) {
     int s = group.rank() + k * group.size();
     values[k] = 0u;
-    if (s < BRICK_SAMPLE_COUNT) {
-      VoxelSample v = produceBrickSample(scene, key, s);
+    if (s < BRICK_SAMPLE_COUNT && !bounded) {
+      VoxelSample v = produceBrickSample(producer, key, s);
       values[k] = v.rgba;
       empty = empty && v.empty;
     }

@@ -18,7 +18,8 @@ struct TimelineCapture {
 class FrameTimeline {
  public:
   virtual ~FrameTimeline() = default;
-  virtual void begin() = 0;
+  // Starts a capture; the view is where GPU kernels record (CPU: an empty view).
+  virtual TimelineView begin() = 0;
   virtual TimelineCapture end() = 0;
 };
 

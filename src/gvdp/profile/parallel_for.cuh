@@ -12,20 +12,21 @@
 namespace gvdp {
 
 template <class Fn>
-__global__ void parallelForKernel(uint32_t n, TaskKind kind, Fn fn) {
-  BlockTimer timer(kind);
+__global__ void parallelForKernel(uint32_t n, TimelineView timeline, TaskKind kind, Fn fn) {
+  BlockTimer timer(timeline, kind);
   for (uint32_t i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
     fn(i);
 }
 
 template <class Fn>
-void parallelForCuda(const char* name, uint32_t n, TaskKind kind, Fn fn) {
+void parallelForCuda(const char* name, uint32_t n, const TimelineView& timeline, TaskKind kind,
+                     Fn fn) {
   constexpr int BLOCK = 256;
   if (n == 0) return;
   NvtxRange range(name);
   static const int resident = residentBlocks(parallelForKernel<Fn>, BLOCK);
   uint32_t blocks = std::min<uint32_t>((n + BLOCK - 1) / BLOCK, static_cast<uint32_t>(resident));
-  parallelForKernel<<<blocks, BLOCK>>>(n, kind, fn);
+  parallelForKernel<<<blocks, BLOCK>>>(n, timeline, kind, fn);
 }
 
 }  // namespace gvdp

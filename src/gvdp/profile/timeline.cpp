@@ -35,9 +35,10 @@ namespace {
 class CpuFrameTimeline final : public FrameTimeline {
  public:
   CpuFrameTimeline() : timeline_(TIMELINE_CAPACITY) {}
-  void begin() override {
+  TimelineView begin() override {
     timeline_.begin();
     recordThreadPoolInto(&timeline_);
+    return {};  // CPU tasks record through the thread pool
   }
   TimelineCapture end() override {
     recordThreadPoolInto(nullptr);

@@ -11,7 +11,7 @@ class GpuFrameTimeline final : public FrameTimeline {
     GVDP_CUDA_CHECK(cudaGetDevice(&device));
     GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&lanes_, cudaDevAttrMultiProcessorCount, device));
   }
-  void begin() override { timeline_.begin(); }
+  TimelineView begin() override { return timeline_.begin(); }
   TimelineCapture end() override {
     TimelineCapture c;
     c.records = timeline_.end(&c.overflow);

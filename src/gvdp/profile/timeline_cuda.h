@@ -8,19 +8,17 @@
 
 namespace gvdp {
 
-void setDeviceTimeline(const TimelineView& view);  // records.nullptr: off
-
 class GpuTimeline {
  public:
   explicit GpuTimeline(uint32_t capacity) : records_(capacity), count_(1) {}
 
-  void begin() {
+  // The view kernels record into (FrameSetup::timeline), emptied.
+  TimelineView begin() {
     GVDP_CUDA_CHECK(cudaMemset(count_.data(), 0, sizeof(uint32_t)));
-    setDeviceTimeline({records_.data(), static_cast<uint32_t>(records_.size()), count_.data()});
+    return {records_.data(), static_cast<uint32_t>(records_.size()), count_.data()};
   }
-  // Switches recording off and returns the records; `overflow` gets the records not kept.
+  // The records of the frame; `overflow` gets the records not kept.
   std::vector<TimelineRecord> end(uint64_t* overflow) {
-    setDeviceTimeline({nullptr, 0, nullptr});
     uint32_t n = 0;
     GVDP_CUDA_CHECK(cudaMemcpy(&n, count_.data(), sizeof n, cudaMemcpyDeviceToHost));
     uint32_t kept = n < records_.size() ? n : static_cast<uint32_t>(records_.size());

@@ -1,14 +1,14 @@
-// Block-level instrumentation of CUDA kernels: put `BlockTimer timer(TaskKind::X);` first in a
-// kernel. Every thread takes part (start = atomicMin of %globaltimer over the block's threads,
-// end = atomicMax); the last thread to leave writes the record, so kernels may return early.
-// Free when profiling is off: one load and a uniform branch per thread.
+// Block-level instrumentation of CUDA kernels: put `BlockTimer timer(timeline, TaskKind::X);` first
+// in a kernel, with the frame's TimelineView (a kernel parameter: no device global, so kernels
+// instantiated in a user's translation unit record too). Every thread takes part (start = atomicMin
+// of %globaltimer over the block's threads, end = atomicMax); the last thread to leave writes the
+// record, so kernels may return early. Free when profiling is off: one load and a uniform branch
+// per thread.
 #pragma once
 
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp {
-
-extern __device__ TimelineView deviceTimeline;  // defined in timeline.cu (relocatable device code)
 
 __device__ inline uint64_t globalTimer() {
   uint64_t t;
@@ -24,7 +24,8 @@ __device__ inline uint32_t smId() {
 
 class BlockTimer {
  public:
-  __device__ explicit BlockTimer(TaskKind kind) : on_(deviceTimeline.enabled()), kind_(kind) {
+  __device__ BlockTimer(const TimelineView& timeline, TaskKind kind)
+      : timeline_(timeline), on_(timeline.enabled()), kind_(kind) {
     if (!on_) return;
     __shared__ Span span;
     span_ = &span;
@@ -44,8 +45,8 @@ class BlockTimer {
     unsigned threads = blockDim.x * blockDim.y * blockDim.z;
     if (atomicAdd(&span_->left, 1u) + 1 == threads) {
       __threadfence_block();
-      deviceTimeline.push({span_->start, span_->end, static_cast<uint16_t>(span_->sm),
-                           static_cast<uint16_t>(smId()), kind_});
+      timeline_.push({span_->start, span_->end, static_cast<uint16_t>(span_->sm),
+                      static_cast<uint16_t>(smId()), kind_});
     }
   }
 
@@ -54,6 +55,7 @@ class BlockTimer {
     unsigned long long start, end;
     unsigned left, sm;
   };
+  TimelineView timeline_;
   bool on_;
   TaskKind kind_;
   Span* span_ = nullptr;

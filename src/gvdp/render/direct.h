@@ -8,11 +8,14 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/render/march.h"
 #include "gvdp/render/shade.h"
+#include "gvdp/world/producer.h"
 
 namespace gvdp {
 
+template <class P>
 struct DirectAccess {
   const FrameSetup& frame;
+  const P& producer;
 
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) const {
     return {BrickState::Resident, 0u, level, brick};
@@ -24,15 +27,16 @@ struct DirectAccess {
     float fvs = static_cast<float>(vs);
     return trilinear(v, [&](int x, int y, int z) {
       Vec3d centre{o.x + (x + 0.5) * vs, o.y + (y + 0.5) * vs, o.z + (z + 0.5) * vs};
-      return produceVoxel(frame.scene, centre, fvs).rgba;
+      return producer.voxel(centre, fvs).rgba;
     });
   }
 };
 
-GVDP_HD GVDP_INLINE Rgba8 renderDirectPixel(const FrameSetup& frame, int pixel) {
+template <class P>
+GVDP_HD GVDP_INLINE Rgba8 renderDirectPixel(const FrameSetup& frame, const P& producer, int pixel) {
   Ray ray = frame.primaryRay(pixel % frame.width, pixel / frame.width);
   RayState state = initialRayState();
-  DirectAccess access{frame};
+  DirectAccess<P> access{frame, producer};
   march(ray, frame.lod, state, access);
   return resolvePixel(state.colour, ray.d);
 }

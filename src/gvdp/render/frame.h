@@ -1,12 +1,12 @@
 // Everything a frame's rays need, as one POD passed by value to kernels: the local origin that
 // keeps float positions small (a multiple of the coarsest brick, so that every level's bricks
-// are aligned on it), the camera relative to it, the LOD and the scene.
+// are aligned on it), the camera relative to it, the LOD and the timeline to record to.
 #pragma once
 
 #include "gvdp/base/camera.h"
 #include "gvdp/base/ray.h"
+#include "gvdp/profile/timeline.h"
 #include "gvdp/render/lod.h"
-#include "gvdp/world/scene.h"
 
 namespace gvdp {
 
@@ -17,8 +17,8 @@ struct FrameSetup {
   float tanHalfFov;  // horizontal
   int width, height;
   Lod lod;
-  SceneParams scene;
   int frameIndex;
+  TimelineView timeline;  // GPU-cores timeline of this frame (records null: off)
 
   GVDP_HD Ray primaryRay(int px, int py) const {
     float sx =
@@ -32,16 +32,15 @@ struct FrameSetup {
 
 constexpr float DEFAULT_FOV_DEGREES = 60.0f;
 
-inline FrameSetup makeFrame(const CameraPose& pose, const SceneParams& scene, int width, int height,
+inline FrameSetup makeFrame(const CameraPose& pose, float voxelSize0, int width, int height,
                             int levels, int frameIndex, float fovDegrees = DEFAULT_FOV_DEGREES) {
-  FrameSetup f;
-  f.scene = scene;
+  FrameSetup f{};
   f.width = width;
   f.height = height;
   f.frameIndex = frameIndex;
   f.tanHalfFov = tanf(0.5f * fovDegrees * PI / 180.0f);
-  f.lod = {scene.voxelSize0, 2.0f * f.tanHalfFov / static_cast<float>(width), levels};
-  double coarsestBrick = static_cast<double>(scene.voxelSize0) * BRICK_WIDTH * (1 << (levels - 1));
+  f.lod = {voxelSize0, 2.0f * f.tanHalfFov / static_cast<float>(width), levels};
+  double coarsestBrick = static_cast<double>(voxelSize0) * BRICK_WIDTH * (1 << (levels - 1));
   f.localOrigin = {floor(pose.position.x / coarsestBrick) * coarsestBrick,
                    floor(pose.position.y / coarsestBrick) * coarsestBrick,
                    floor(pose.position.z / coarsestBrick) * coarsestBrick};

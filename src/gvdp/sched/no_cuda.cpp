@@ -10,23 +10,23 @@
 
 namespace gvdp {
 
-std::unique_ptr<Scheduler> makeDirectCuda() {
+std::unique_ptr<Scheduler> makeDirectCuda(ProducerKernelsPtr) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions&) {
+std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions&, ProducerKernelsPtr) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions&) {
+std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions&, ProducerKernelsPtr) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions&) {
+std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions&, ProducerKernelsPtr) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions&) {
+std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions&, ProducerKernelsPtr) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

@@ -9,11 +9,12 @@ namespace gvdp {
 
 constexpr int PRODUCE_BLOCK = 512;
 
-__device__ inline void produceBrickBlock(const SceneParams& scene, const CacheView& cache,
+template <class P>
+__device__ inline void produceBrickBlock(const P& producer, const CacheView& cache,
                                          const BrickPool& pool, const BrickKey& key) {
   __shared__ uint32_t word;
   constexpr int PER = (BRICK_SAMPLE_COUNT + PRODUCE_BLOCK - 1) / PRODUCE_BLOCK;
-  produceBrick<PER>(BlockScope{&word}, scene, cache, pool, key);
+  produceBrick<PER>(BlockScope{&word}, producer, cache, pool, key);
 }
 
 }  // namespace gvdp

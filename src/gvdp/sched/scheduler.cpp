@@ -45,23 +45,31 @@ void requireBackend(Backend backend) {
   GVDP_INPUT_CHECK(cudaDeviceAvailable(), "backend 'cuda' unavailable: ", cudaDeviceSummary());
 }
 
-Scheduler::Scheduler(Backend backend)
-    : clock_(backend == Backend::Cuda
+Scheduler::Scheduler(Backend backend, ProducerKernelsPtr producer)
+    : producer_(std::move(producer)),
+      backend_(backend),
+      clock_(backend == Backend::Cuda
                  ? makeGpuFrameClock()
                  : std::unique_ptr<FrameClock>(std::make_unique<CpuFrameClock>())) {}
 
 Scheduler::~Scheduler() = default;
 
-FrameStats Scheduler::render(const FrameSetup& frame, Image& out) {
+FrameStats Scheduler::render(const FrameSetup& frame, Image* target) {
+  GVDP_INPUT_CHECK(target || backend_ == Backend::Cuda,
+                   "an image in device memory needs the cuda backend");
+  hostImage_ = target != nullptr;
+  Image scratch;
+  Image& out = target ? *target : scratch;
   FrameStats stats;
   stats.index = frame.frameIndex;
   prepareFrame(frame);
-  if (timeline_) timeline_->begin();
+  FrameSetup f = frame;
+  if (timeline_) f.timeline = timeline_->begin();
   clock_->start();
-  renderFrame(frame, out, stats);
+  renderFrame(f, out, stats);
   stats.ms = clock_->stopMs();
   if (timeline_) stats.timeline = timeline_->end();
-  finishFrame(frame, out, stats);
+  finishFrame(f, out, stats);
   return stats;
 }
 
@@ -74,31 +82,34 @@ GraphDriver graphDriverFromEnvironment() {
 }
 
 namespace {
-std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options) {
+std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options, ProducerKernelsPtr p) {
   requireBackend(options.backend);
   if (options.backend == Backend::Cuda) {
+    GVDP_INPUT_CHECK(p->cuda(),
+                     "backend 'cuda' needs the producer compiled by nvcc: build the "
+                     "translation unit that calls makeRenderer as CUDA");
     switch (options.kind) {
       case SchedulerKind::Direct:
-        return makeDirectCuda();
+        return makeDirectCuda(std::move(p));
       case SchedulerKind::Sp:
-        return makeSpCuda(options);
+        return makeSpCuda(options, std::move(p));
       case SchedulerKind::Dp:
-        return makeDpCuda(options);
+        return makeDpCuda(options, std::move(p));
       case SchedulerKind::Pt:
-        return makePtCuda(options);
+        return makePtCuda(options, std::move(p));
       case SchedulerKind::Graph:
-        return makeGraphCuda(options);
+        return makeGraphCuda(options, std::move(p));
     }
   }
   switch (options.kind) {
     case SchedulerKind::Direct:
-      return makeDirectCpu();
+      return makeDirectCpu(std::move(p));
     case SchedulerKind::Sp:
-      return makeSpCpu(options);
+      return makeSpCpu(options, std::move(p));
     case SchedulerKind::Dp:
-      return makeDpCpu(options);
+      return makeDpCpu(options, std::move(p));
     case SchedulerKind::Pt:
-      return makePtCpu(options);
+      return makePtCpu(options, std::move(p));
     case SchedulerKind::Graph:
       break;
   }
@@ -106,8 +117,9 @@ std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options) {
 }
 }  // namespace
 
-std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options) {
-  std::unique_ptr<Scheduler> s = makeBare(options);
+std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
+                                         ProducerKernelsPtr producer) {
+  std::unique_ptr<Scheduler> s = makeBare(options, std::move(producer));
   if (options.timeline)
     s->recordTimeline(options.backend == Backend::Cuda ? makeGpuFrameTimeline()
                                                        : makeCpuFrameTimeline());

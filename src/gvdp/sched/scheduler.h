@@ -13,6 +13,7 @@
 #include "gvdp/profile/frame_clock.h"
 #include "gvdp/profile/frame_timeline.h"
 #include "gvdp/render/frame.h"
+#include "gvdp/sched/producer_kernels.h"
 
 namespace gvdp {
 
@@ -78,12 +79,16 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
 
 class Scheduler {
  public:
-  explicit Scheduler(Backend backend);
+  Scheduler(Backend backend, ProducerKernelsPtr producer);
   virtual ~Scheduler();
   // Records the timeline of the following frames into FrameStats::timeline.
   void recordTimeline(std::unique_ptr<FrameTimeline> t) { timeline_ = std::move(t); }
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
-  FrameStats render(const FrameSetup& frame, Image& out);
+  FrameStats render(const FrameSetup& frame, Image& out) { return render(frame, &out); }
+  // With `out` null the image stays on the device, at deviceImage() (cuda backend only).
+  FrameStats render(const FrameSetup& frame, Image* out);
+  // The last frame's RGBA8 pixels in device memory (CUDA schedulers), else null.
+  virtual const uint32_t* deviceImage() const { return nullptr; }
   // Bytes of every structure the scheduler holds (after the last frame).
   virtual MemoryReport memory() const = 0;
 
@@ -91,8 +96,14 @@ class Scheduler {
   virtual void prepareFrame(const FrameSetup&) {}
   virtual void renderFrame(const FrameSetup& frame, Image& out, FrameStats& stats) = 0;
   virtual void finishFrame(const FrameSetup&, Image&, FrameStats&) {}
+  bool hostImageWanted() const { return hostImage_; }
+  const ProducerKernels& producer() const { return *producer_; }
+  const CudaProducerKernels& cudaProducer() const { return *producer_->cuda(); }
 
  private:
+  ProducerKernelsPtr producer_;
+  Backend backend_;
+  bool hostImage_ = true;
   std::unique_ptr<FrameClock> clock_;
   std::unique_ptr<FrameTimeline> timeline_;
 };
@@ -106,6 +117,8 @@ void addCacheStats(Cache& cache, FrameStats& stats) {
 
 // Throws InputError when the backend is not available (no CUDA build or no device).
 void requireBackend(Backend backend);
-std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options);
+// The scheduler of `options` over a producer's kernels (for the cuda backend, compiled by nvcc).
+std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
+                                         ProducerKernelsPtr producer);
 
 }  // namespace gvdp

@@ -8,9 +8,9 @@ namespace gvdp {
 namespace {
 
 // Height of the first matter below `top` at (x, z), at the finest voxel size.
-double surfaceHeight(const SceneParams& scene, double x, double z, double top) {
+double surfaceHeight(const BuiltinScene& scene, double x, double z, double top) {
   for (double y = top; y > top - 400.0; y -= 0.25)
-    if ((produceVoxel(scene, {x, y, z}, scene.voxelSize0).rgba >> 24) != 0) return y;
+    if ((scene.voxel({x, y, z}, scene.voxelSize0()).rgba >> 24) != 0) return y;
   return top - 400.0;
 }
 
@@ -43,9 +43,9 @@ std::array<SceneInfo, SCENE_COUNT> makeScenes() {
        0.3f},
   }};
   // Terrain-like scenes: put the eye a little above the ground under the start position.
-  s[0].start.position.y = surfaceHeight(s[0].params, 10.5, 0.5, 40.0) + 5.0;
-  s[1].start.position.y = surfaceHeight(s[1].params, 0.5, 0.5, 200.0) + 10.0;
-  s[2].start.position.y = surfaceHeight(s[2].params, 0.3, 0.3, 3.0) + 1.7;
+  s[0].start.position.y = surfaceHeight(s[0].world, 10.5, 0.5, 40.0) + 5.0;
+  s[1].start.position.y = surfaceHeight(s[1].world, 0.5, 0.5, 200.0) + 10.0;
+  s[2].start.position.y = surfaceHeight(s[2].world, 0.3, 0.3, 3.0) + 1.7;
   return s;
 }
 

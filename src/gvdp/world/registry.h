@@ -14,7 +14,7 @@ namespace gvdp {
 struct SceneInfo {
   std::string_view name;
   std::string_view description;
-  SceneParams params;
+  BuiltinScene world;
   CameraPose start;
   float speed;  // world units per frame along the camera paths
 };

@@ -1,38 +1,61 @@
-// The closed set of built-in scenes, dispatched by tag (docs/STYLE.md 4: no virtual calls in device
-// code). A producer is a deterministic function (world position of a voxel centre, voxel size)
-// -> VoxelSample; CPU and GPU evaluate the very same code.
+// The five built-in worlds as producers (world/producer.h), each a type of its own, and
+// BuiltinScene, the producer the command line instantiates once: one of the five chosen by tag
+// (docs/STYLE.md 4: no virtual calls in device code). None gives an emptiness bound for boxes
+// yet: their per-voxel empty flags make the EMPTY bricks.
 #pragma once
 
 #include <cstdint>
 
 #include "gvdp/world/forest.h"
+#include "gvdp/world/producer.h"
 #include "gvdp/world/spheres.h"
 #include "gvdp/world/terrain.h"
 
 namespace gvdp {
 
+// A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size.
+template <VoxelSample (*FN)(Vec3d, float, uint32_t)>
+struct SeededWorld {
+  float finest;
+  uint32_t seed;
+
+  GVDP_HD VoxelSample voxel(Vec3d p, float voxelSize) const { return FN(p, voxelSize, seed); }
+  GVDP_HD bool emptyBox(Vec3d, Vec3d, float) const { return false; }
+  GVDP_HD float voxelSize0() const { return finest; }
+};
+
+using PerlinWorld = SeededWorld<producePerlin>;
+using FbmWorld = SeededWorld<produceFbm>;
+using ForestWorld = SeededWorld<produceForest>;
+using RandomSpheresWorld = SeededWorld<produceRandomSpheres>;
+using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres>;
+
 enum class SceneKind : uint8_t { Perlin, Fbm, Forest, RandomSpheres, AlignedSpheres };
 constexpr int SCENE_COUNT = 5;
 
-struct SceneParams {
+struct BuiltinScene {
   SceneKind kind;
-  float voxelSize0;  // voxel size at level 0, in world units
+  float finest;  // voxel size at level 0, in world units
   uint32_t seed;
+
+  GVDP_HD VoxelSample voxel(Vec3d p, float voxelSize) const {
+    switch (kind) {
+      case SceneKind::Perlin:
+        return PerlinWorld{finest, seed}.voxel(p, voxelSize);
+      case SceneKind::Fbm:
+        return FbmWorld{finest, seed}.voxel(p, voxelSize);
+      case SceneKind::Forest:
+        return ForestWorld{finest, seed}.voxel(p, voxelSize);
+      case SceneKind::RandomSpheres:
+        return RandomSpheresWorld{finest, seed}.voxel(p, voxelSize);
+      default:
+        return AlignedSpheresWorld{finest, seed}.voxel(p, voxelSize);
+    }
+  }
+  GVDP_HD bool emptyBox(Vec3d, Vec3d, float) const { return false; }
+  GVDP_HD float voxelSize0() const { return finest; }
 };
 
-GVDP_HD GVDP_INLINE VoxelSample produceVoxel(const SceneParams& scene, Vec3d p, float voxelSize) {
-  switch (scene.kind) {
-    case SceneKind::Perlin:
-      return producePerlin(p, voxelSize, scene.seed);
-    case SceneKind::Fbm:
-      return produceFbm(p, voxelSize, scene.seed);
-    case SceneKind::Forest:
-      return produceForest(p, voxelSize, scene.seed);
-    case SceneKind::RandomSpheres:
-      return produceRandomSpheres(p, voxelSize, scene.seed);
-    default:
-      return produceAlignedSpheres(p, voxelSize, scene.seed);
-  }
-}
+static_assert(Producer<BuiltinScene> && Producer<PerlinWorld>);
 
 }  // namespace gvdp

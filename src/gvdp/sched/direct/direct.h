@@ -7,7 +7,7 @@
 
 namespace gvdp {
 
-std::unique_ptr<Scheduler> makeDirectCpu();
-std::unique_ptr<Scheduler> makeDirectCuda();  // throws when built without CUDA
+std::unique_ptr<Scheduler> makeDirectCpu(ProducerKernelsPtr producer);
+std::unique_ptr<Scheduler> makeDirectCuda(ProducerKernelsPtr producer);  // CUDA builds only
 
 }  // namespace gvdp

@@ -1,5 +1,3 @@
-#include "gvdp/base/parallel.h"
-#include "gvdp/render/direct.h"
 #include "gvdp/sched/direct/direct.h"
 
 namespace gvdp {
@@ -7,23 +5,20 @@ namespace {
 
 class DirectCpu final : public Scheduler {
  public:
-  DirectCpu() : Scheduler(Backend::Cpu) {}
+  explicit DirectCpu(ProducerKernelsPtr producer) : Scheduler(Backend::Cpu, std::move(producer)) {}
   MemoryReport memory() const override { return {}; }
 
  private:
   void renderFrame(const FrameSetup& frame, Image& out, FrameStats&) override {
     out = Image(frame.width, frame.height);
-    uint32_t* pixels = out.pixels.data();
-    parallelFor(
-        frame.pixelCount(),
-        [&](int64_t i) { pixels[i] = renderDirectPixel(frame, static_cast<int>(i)); }, 16);
+    producer().renderDirect(frame, out.pixels.data());
   }
 };
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeDirectCpu() {
-  return std::make_unique<DirectCpu>();
+std::unique_ptr<Scheduler> makeDirectCpu(ProducerKernelsPtr producer) {
+  return std::make_unique<DirectCpu>(std::move(producer));
 }
 
 }  // namespace gvdp

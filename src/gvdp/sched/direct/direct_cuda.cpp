@@ -1,15 +1,16 @@
-#include "gvdp/sched/direct/direct_cuda.h"
-
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/sched/direct/direct.h"
+#include "gvdp/sched/producer_kernels_cuda.h"
 
 namespace gvdp {
 namespace {
 
 class DirectCuda final : public Scheduler {
  public:
-  DirectCuda() : Scheduler(Backend::Cuda) {}
+  explicit DirectCuda(ProducerKernelsPtr producer)
+      : Scheduler(Backend::Cuda, std::move(producer)) {}
   MemoryReport memory() const override { return {}; }
+  const uint32_t* deviceImage() const override { return image_.data(); }
 
  private:
   void prepareFrame(const FrameSetup& frame) override {
@@ -17,10 +18,11 @@ class DirectCuda final : public Scheduler {
     if (image_.size() != n) image_ = DeviceBuffer<uint32_t>(n);
   }
   void renderFrame(const FrameSetup& frame, Image&, FrameStats&) override {
-    launchDirect(frame, image_.data(), nullptr);
+    cudaProducer().launchDirect(frame, image_.data());
     GVDP_CUDA_CHECK(cudaGetLastError());
   }
   void finishFrame(const FrameSetup& frame, Image& out, FrameStats&) override {
+    if (!hostImageWanted()) return;
     out = Image(frame.width, frame.height);
     GVDP_CUDA_CHECK(
         cudaMemcpy(out.pixels.data(), image_.data(), image_.bytes(), cudaMemcpyDeviceToHost));
@@ -31,8 +33,8 @@ class DirectCuda final : public Scheduler {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeDirectCuda() {
-  return std::make_unique<DirectCuda>();
+std::unique_ptr<Scheduler> makeDirectCuda(ProducerKernelsPtr producer) {
+  return std::make_unique<DirectCuda>(std::move(producer));
 }
 
 }  // namespace gvdp

@@ -11,8 +11,8 @@
 
 namespace gvdp {
 
-std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& options);
-std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& options);
+std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
+std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
 // Bytes of the CPU task queue at full capacity (its memory() item "task_queue").
 size_t dpCpuTaskQueueBytes(size_t pendingLaunches);
 

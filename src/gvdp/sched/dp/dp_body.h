@@ -37,6 +37,7 @@ struct DpContext {
   RayState* payload;
   uint32_t* locks;     // per pixel: RAY_FREE, RAY_HELD or RAY_DONE
   uint32_t* counters;  // DpCounter
+  BrickPool pool;
 };
 
 // Pixels whose centre ray may cross the brick (paper 3.3.2): the projected corners' bounds,

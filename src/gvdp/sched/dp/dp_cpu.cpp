@@ -41,9 +41,8 @@ struct CpuLauncher {
 
 class DpCpu final : public SpFrameCpu {
  public:
-  explicit DpCpu(const SchedulerOptions& o)
-      : SpFrameCpu(o),
-        pendingLaunches_(pendingLaunchesOf(o)) {}
+  DpCpu(const SchedulerOptions& o, ProducerKernelsPtr producer)
+      : SpFrameCpu(o, std::move(producer)), pendingLaunches_(pendingLaunchesOf(o)) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
@@ -60,8 +59,8 @@ class DpCpu final : public SpFrameCpu {
     uint32_t counters[DP_COUNTER_COUNT] = {};
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
-    DpContext ctx{f, view, payload_.data(), locks_.data(), counters};
-    BrickPool pool{cache_.texels()};
+    BrickPool pool = cache_.pool();
+    DpContext ctx{f, view, payload_.data(), locks_.data(), counters, pool};
 
     // Root launch: the screen in 32x16 tiles (not limited by the pending-launch capacity).
     TaskQueue<DpTask> queue(pendingLaunches_ + static_cast<size_t>(dpTileCount(f)));
@@ -82,7 +81,7 @@ class DpCpu final : public SpFrameCpu {
           while (queue.pop(task)) {
             uint64_t start = steadyNanoseconds();
             if (task.produce) {
-              cache_.produce(f.scene, ctx.cache, task.key);
+              producer().produceBrick(ctx.cache, pool, task.key);
               launcher.relaunch(brickScreenRect(f, ctx.cache.clipmap, task.key));
             } else {
               for (int y = task.rect.y0; y < task.rect.y1; ++y)
@@ -115,8 +114,8 @@ class DpCpu final : public SpFrameCpu {
     next_.resize(f.pixelCount());
     live_.resize(f.pixelCount());
     // A degraded frame keeps degrading; the sweep itself may refill the free list.
-    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, static_cast<uint32_t>(stats.sweptPixels),
-                 false, stats);
+    runSpLoopCpu(f, producer(), cache_, payload_.data(), live_, next_,
+                 static_cast<uint32_t>(stats.sweptPixels), false, stats);
   }
 
   size_t pendingLaunches_;
@@ -129,8 +128,8 @@ size_t dpCpuTaskQueueBytes(size_t pendingLaunches) {
   return pendingLaunches * sizeof(DpTask);
 }
 
-std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o) {
-  return std::make_unique<DpCpu>(o);
+std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<DpCpu>(o, std::move(producer));
 }
 
 }  // namespace gvdp

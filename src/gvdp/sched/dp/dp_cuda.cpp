@@ -1,6 +1,5 @@
-#include "gvdp/sched/dp/dp_cuda.h"
-
 #include "gvdp/sched/dp/dp.h"
+#include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/sp/sp_cuda.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
@@ -9,11 +8,16 @@ namespace {
 
 class DpCuda final : public SpFrameCuda {
  public:
-  explicit DpCuda(const SchedulerOptions& o)
-      : SpFrameCuda(o),
+  DpCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
+      : SpFrameCuda(o, std::move(producer)),
         pendingLaunches_(pendingLaunchesOf(o)),
         locks_(0),
-        counters_(DP_COUNTER_COUNT) {
+        counters_(DP_COUNTER_COUNT),
+        context_(1) {
+    GVDP_INPUT_CHECK(
+        cudaProducer().hasDp(),
+        "scheduler 'dp' on cuda needs CUDA Dynamic Parallelism: build with GVDP_CDP=ON "
+        "and the producer's translation unit with relocatable device code");
     size_t free0 = 0, free1 = 0, total = 0;
     GVDP_CUDA_CHECK(cudaMemGetInfo(&free0, &total));
     GVDP_CUDA_CHECK(cudaDeviceSetLimit(cudaLimitDevRuntimePendingLaunchCount, pendingLaunches_));
@@ -46,10 +50,11 @@ class DpCuda final : public SpFrameCuda {
         cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));  // fresh rays
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
-    DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data()};
+    DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data(), cache_.pool()};
+    GVDP_CUDA_CHECK(cudaMemcpy(context_.data(), &ctx, sizeof ctx, cudaMemcpyHostToDevice));
     {
       NvtxRange schedule("dp device schedule");
-      launchDpFrame(ctx, cache_.pool());
+      cudaProducer().launchDpFrame(context_.data(), f);
       GVDP_CUDA_CHECK(cudaDeviceSynchronize());
     }
     GVDP_CUDA_CHECK(cudaGetLastError());
@@ -83,19 +88,20 @@ class DpCuda final : public SpFrameCuda {
     uint32_t unfinished = 0;
     GVDP_CUDA_CHECK(cudaMemcpy(&unfinished, buffers_.counters.data(), 4, cudaMemcpyDeviceToHost));
     stats.sweptPixels = unfinished;
-    if (unfinished) runSpLoopCuda(f, cache_, buffers_, unfinished, false, stats);
+    if (unfinished) runSpLoopCuda(f, cudaProducer(), cache_, buffers_, unfinished, false, stats);
   }
 
   uint32_t pendingLaunches_;
   DeviceBuffer<uint32_t> locks_, counters_;
+  DeviceBuffer<DpContext> context_;  // the frame's, read by every device-side task
   size_t cdpBytes_ = 0, freeBefore_ = 0;
   bool firstFrame_ = true;
 };
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& o) {
-  return std::make_unique<DpCuda>(o);
+std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<DpCuda>(o, std::move(producer));
 }
 
 }  // namespace gvdp

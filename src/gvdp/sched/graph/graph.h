@@ -20,6 +20,7 @@ enum class GraphDriver { Device, Host };
 // GVDP_GRAPH_LOOP: "device" (default) or "host"; throws InputError naming any other value.
 GraphDriver graphDriverFromEnvironment();
 
-std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& options);
+std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& options,
+                                         ProducerKernelsPtr producer);
 
 }  // namespace gvdp

@@ -8,11 +8,12 @@ namespace {
 
 class GraphCuda final : public SpFrameCuda {
  public:
-  explicit GraphCuda(const SchedulerOptions& o)
-      : SpFrameCuda(o),
+  GraphCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
+      : SpFrameCuda(o, std::move(producer)),
+        frame_(1),
         loop_(1),
         driver_(graphDriverFromEnvironment()),
-        exec_(buildSpGraph(loop_.data(), driver_)) {}
+        exec_(buildSpGraph(frame_.data(), loop_.data(), driver_, cudaProducer())) {}
   ~GraphCuda() override { cudaGraphExecDestroy(exec_); }
 
  private:
@@ -21,7 +22,7 @@ class GraphCuda final : public SpFrameCuda {
     cache_.beginFrame(f);
     GraphFrame g{f, cache_.view(), cache_.pool(), buffers_.payload.data()};
     GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0, 0};
-    uploadGraphFrame(g);
+    GVDP_CUDA_CHECK(cudaMemcpyAsync(frame_.data(), &g, sizeof g, cudaMemcpyHostToDevice));
     GVDP_CUDA_CHECK(cudaMemcpyAsync(loop_.data(), &loop, sizeof loop, cudaMemcpyHostToDevice));
     do {  // once, unless the host drives the loop
       GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, nullptr));
@@ -38,9 +39,10 @@ class GraphCuda final : public SpFrameCuda {
     if (loop.live != buffers_.live.data()) std::swap(buffers_.live, buffers_.next);
     if (loop.exit == GRAPH_FAILED && cache_.refill() == 0) cache_.setDegraded(true);
     if (stats.passes >= SP_MAX_PASSES) cache_.setDegraded(true);
-    runSpLoopCuda(f, cache_, buffers_, loop.liveCount, false, stats);
+    runSpLoopCuda(f, cudaProducer(), cache_, buffers_, loop.liveCount, false, stats);
   }
 
+  DeviceBuffer<GraphFrame> frame_;
   DeviceBuffer<GraphLoop> loop_;
   GraphDriver driver_;
   cudaGraphExec_t exec_;
@@ -48,8 +50,8 @@ class GraphCuda final : public SpFrameCuda {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& o) {
-  return std::make_unique<GraphCuda>(o);
+std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<GraphCuda>(o, std::move(producer));
 }
 
 }  // namespace gvdp

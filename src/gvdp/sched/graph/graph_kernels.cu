@@ -1,27 +1,25 @@
-// Kernels of the graph scheduler: the sp passes as resident grids whose warps (render) or blocks
-// (production) claim their next items from a cursor, over counts in device memory (a graph's
-// launch sizes are fixed), and the two one-thread control kernels that swap the live-ray lists
-// and set the WHILE node's condition (cudaGraphSetConditional).
+// Kernels of the graph scheduler: the render pass as a resident grid whose warps claim their next
+// items from a cursor, over counts in device memory (a graph's launch sizes are fixed), and the
+// two one-thread control kernels that swap the live-ray lists and set the WHILE node's condition
+// (cudaGraphSetConditional). The production node depends on the producer: graph_produce.cuh.
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/compaction.cuh"
 #include "gvdp/sched/graph/graph_cuda.h"
-#include "gvdp/sched/produce_block.cuh"
+#include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp/sp.h"
 
 namespace gvdp {
 namespace {
 
-// The frame, in constant memory (as kernel parameters are): uniform reads are served by the
-// constant cache, and no store of the kernels can alias it.
-__constant__ GraphFrame graphFrame;
-
 constexpr int RENDER_BLOCK = 128;
 
 // Pass 0 covers the screen in 8x8 tiles from fresh states; later passes the live list.
-__global__ void __launch_bounds__(RENDER_BLOCK) graphRenderKernel(GraphLoop* loop) {
-  BlockTimer timer(TaskKind::Render);
+__global__ void __launch_bounds__(RENDER_BLOCK)
+    graphRenderKernel(const GraphFrame* __restrict__ frame, GraphLoop* loop) {
+  const GraphFrame& graphFrame = *frame;
+  BlockTimer timer(graphFrame.frame.timeline, TaskKind::Render);
   const FrameSetup& f = graphFrame.frame;
   bool tiled = loop->passes == 0;
   uint32_t count = tiled ? static_cast<uint32_t>(tileCount(f) * TILE * TILE) : loop->liveCount;
@@ -56,7 +54,8 @@ __device__ void stopLoop(GraphLoop* loop, WhileCondition condition) {
   if (condition.exists) cudaGraphSetConditional(condition.handle, 0);
 }
 
-__global__ void afterRenderKernel(GraphLoop* loop, WhileCondition condition) {
+__global__ void afterRenderKernel(const GraphFrame* frame, GraphLoop* loop,
+                                  WhileCondition condition) {
   uint32_t* t = loop->live;
   loop->live = loop->next;
   loop->next = t;
@@ -67,32 +66,18 @@ __global__ void afterRenderKernel(GraphLoop* loop, WhileCondition condition) {
   if (loop->liveCount == 0) {
     stopLoop(loop, condition);
   } else {
-    loop->failedBefore = graphFrame.cache.counters[COUNTER_FAILED];
+    loop->failedBefore = frame->cache.counters[COUNTER_FAILED];
   }
 }
 
-__global__ void __launch_bounds__(PRODUCE_BLOCK) graphProduceKernel(GraphLoop* loop) {
-  BlockTimer timer(TaskKind::Produce);
+__global__ void afterProduceKernel(const GraphFrame* frame, GraphLoop* loop,
+                                   WhileCondition condition) {
   if (loop->stop) return;
-  const CacheView& cache = graphFrame.cache;
-  uint32_t requests = cache.counters[COUNTER_REQUESTS];
-  requests = requests < cache.requestCapacity ? requests : cache.requestCapacity;
-  __shared__ uint32_t b;
-  for (;;) {
-    if (threadIdx.x == 0) b = atomicAdd(&loop->cursor, 1u);
-    __syncthreads();
-    if (b >= requests) return;
-    produceBrickBlock(graphFrame.frame.scene, cache, graphFrame.pool, cache.requests[b]);
-  }
-}
-
-__global__ void afterProduceKernel(GraphLoop* loop, WhileCondition condition) {
-  if (loop->stop) return;
-  graphFrame.cache.counters[COUNTER_REQUESTS] = 0;
+  frame->cache.counters[COUNTER_REQUESTS] = 0;
   loop->cursor = 0;
-  uint32_t exit = graphFrame.cache.counters[COUNTER_FAILED] != loop->failedBefore ? GRAPH_FAILED
-                  : loop->passes >= static_cast<uint32_t>(SP_MAX_PASSES)          ? GRAPH_MAX_PASSES
-                                                                                  : GRAPH_DONE;
+  uint32_t exit = frame->cache.counters[COUNTER_FAILED] != loop->failedBefore ? GRAPH_FAILED
+                  : loop->passes >= static_cast<uint32_t>(SP_MAX_PASSES)      ? GRAPH_MAX_PASSES
+                                                                              : GRAPH_DONE;
   if (exit != GRAPH_DONE) {
     loop->exit = exit;
     stopLoop(loop, condition);
@@ -101,13 +86,9 @@ __global__ void afterProduceKernel(GraphLoop* loop, WhileCondition condition) {
 
 }  // namespace
 
-void uploadGraphFrame(const GraphFrame& frame) {
-  GVDP_CUDA_CHECK(cudaMemcpyToSymbolAsync(graphFrame, &frame, sizeof frame));
-}
-
-cudaGraphExec_t buildSpGraph(GraphLoop* loop, GraphDriver driver) {
+cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop, GraphDriver driver,
+                             const CudaProducerKernels& producer) {
   int renderBlocks = residentBlocks(graphRenderKernel, RENDER_BLOCK);
-  int produceBlocks = residentBlocks(graphProduceKernel, PRODUCE_BLOCK);
   cudaGraph_t graph = nullptr;
   GVDP_CUDA_CHECK(cudaGraphCreate(&graph, 0));
   WhileCondition condition{0, driver == GraphDriver::Device};
@@ -129,10 +110,10 @@ cudaGraphExec_t buildSpGraph(GraphLoop* loop, GraphDriver driver) {
   GVDP_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
   GVDP_CUDA_CHECK(cudaStreamBeginCaptureToGraph(stream, body, nullptr, nullptr, 0,
                                                 cudaStreamCaptureModeRelaxed));
-  graphRenderKernel<<<renderBlocks, RENDER_BLOCK, 0, stream>>>(loop);
-  afterRenderKernel<<<1, 1, 0, stream>>>(loop, condition);
-  graphProduceKernel<<<produceBlocks, PRODUCE_BLOCK, 0, stream>>>(loop);
-  afterProduceKernel<<<1, 1, 0, stream>>>(loop, condition);
+  graphRenderKernel<<<renderBlocks, RENDER_BLOCK, 0, stream>>>(frame, loop);
+  afterRenderKernel<<<1, 1, 0, stream>>>(frame, loop, condition);
+  producer.captureGraphProduce(frame, loop, stream);
+  afterProduceKernel<<<1, 1, 0, stream>>>(frame, loop, condition);
   GVDP_CUDA_CHECK(cudaStreamEndCapture(stream, &body));
   GVDP_CUDA_CHECK(cudaStreamDestroy(stream));
 

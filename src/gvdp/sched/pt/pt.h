@@ -9,7 +9,7 @@
 
 namespace gvdp {
 
-std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options);
-std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& options);
+std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
+std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
 
 }  // namespace gvdp

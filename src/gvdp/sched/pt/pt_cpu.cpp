@@ -12,7 +12,7 @@ namespace {
 
 class PtCpu final : public SpFrameCpu {
  public:
-  explicit PtCpu(const SchedulerOptions& o) : SpFrameCpu(o) {}
+  PtCpu(const SchedulerOptions& o, ProducerKernelsPtr p) : SpFrameCpu(o, std::move(p)) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
@@ -27,7 +27,7 @@ class PtCpu final : public SpFrameCpu {
   void renderFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
     beginRays(f);
     PtContext ctx = prepare(f);
-    BrickPool pool{cache_.texels()};
+    BrickPool pool = cache_.pool();
     ThreadPool& threads = ThreadPool::global();
     threads.run(
         threads.size(), 1, [&](int64_t, int64_t, int worker) { work(ctx, pool, worker); },
@@ -70,7 +70,7 @@ class PtCpu final : public SpFrameCpu {
       uint32_t position = 0, finished = 0;
       if (ringClaim(ctx.tasks, 1, &position)) {
         uint32_t id = ringTake(ctx.tasks, position);
-        cache_.produce(f.scene, ctx.cache, loadTaskKey(ctx, id));
+        producer().produceBrick(ctx.cache, pool, loadTaskKey(ctx, id));
         finishProductionTask(ctx, id);
         atomicAdd32(ctx.counter(PT_PRODUCTIONS), 1u);
         kind = TaskKind::Produce;
@@ -103,8 +103,8 @@ class PtCpu final : public SpFrameCpu {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& o) {
-  return std::make_unique<PtCpu>(o);
+std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<PtCpu>(o, std::move(producer));
 }
 
 }  // namespace gvdp

@@ -1,5 +1,6 @@
 #include <vector>
 
+#include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/pt/pt_cuda.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
@@ -9,10 +10,10 @@ namespace {
 
 class PtCuda final : public SpFrameCuda {
  public:
-  explicit PtCuda(const SchedulerOptions& o)
-      : SpFrameCuda(o),
+  PtCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
+      : SpFrameCuda(o, std::move(producer)),
         counters_(PT_COUNTER_COUNT * PT_COUNTER_STRIDE),
-        blocks_(ptWorkerBlocks()) {}
+        blocks_(cudaProducer().ptWorkerBlocks()) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCuda::memory();
@@ -33,7 +34,7 @@ class PtCuda final : public SpFrameCuda {
     PtContext ctx = prepare(f);
     {
       NvtxRange kernel("pt persistent kernel");
-      launchPtFrame(ctx, cache_.pool(), blocks_);
+      cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_);
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
     stats.unfinishedPixels = resolveCuda(f, buffers_);
@@ -86,8 +87,8 @@ class PtCuda final : public SpFrameCuda {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& o) {
-  return std::make_unique<PtCuda>(o);
+std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<PtCuda>(o, std::move(producer));
 }
 
 }  // namespace gvdp

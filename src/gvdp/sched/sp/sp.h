@@ -11,8 +11,8 @@
 
 namespace gvdp {
 
-std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& options);
-std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& options);
+std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
+std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
 
 // Passes after which a frame stops producing and finishes its rays degraded (a safety net: a
 // normal frame needs a few dozen).

@@ -10,13 +10,13 @@
 namespace gvdp {
 
 namespace {
-void produceQueued(const FrameSetup& f, BrickCacheCpu& cache) {
+void produceQueued(const ProducerKernels& producer, BrickCacheCpu& cache) {
   CacheView view = cache.view();
   uint32_t requests = std::min(cache.counters()[COUNTER_REQUESTS], view.requestCapacity);
   uint32_t failedBefore = cache.counters()[COUNTER_FAILED];
   const BrickKey* keys = cache.requests();
   parallelFor(
-      requests, [&](int64_t i) { cache.produce(f.scene, view, keys[i]); }, 1,
+      requests, [&](int64_t i) { producer.produceBrick(view, cache.pool(), keys[i]); }, 1,
       static_cast<uint8_t>(TaskKind::Produce));
   cache.clearRequests();
   if (cache.counters()[COUNTER_FAILED] != failedBefore && cache.refill() == 0)
@@ -24,11 +24,11 @@ void produceQueued(const FrameSetup& f, BrickCacheCpu& cache) {
 }
 }  // namespace
 
-void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
-                  std::vector<uint32_t>& live, std::vector<uint32_t>& next, uint32_t liveCount,
-                  bool tiled, FrameStats& stats) {
-  BrickPool pool{cache.texels()};
-  produceQueued(f, cache);
+void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCacheCpu& cache,
+                  RayState* payload, std::vector<uint32_t>& live, std::vector<uint32_t>& next,
+                  uint32_t liveCount, bool tiled, FrameStats& stats) {
+  BrickPool pool = cache.pool();
+  produceQueued(producer, cache);
   for (int pass = 0;; ++pass) {
     CacheView view = cache.view();
     uint32_t nextCount = 0;
@@ -53,7 +53,7 @@ void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
     std::swap(live, next);
     liveCount = nextCount;
     if (liveCount == 0) return;
-    produceQueued(f, cache);
+    produceQueued(producer, cache);
     if (stats.passes >= SP_MAX_PASSES) cache.setDegraded(true);
   }
 }
@@ -72,8 +72,8 @@ int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out) {
   return unfinished;
 }
 
-SpFrameCpu::SpFrameCpu(const SchedulerOptions& o)
-    : Scheduler(Backend::Cpu), cache_(poolBricksOf(o)) {}
+SpFrameCpu::SpFrameCpu(const SchedulerOptions& o, ProducerKernelsPtr producer)
+    : Scheduler(Backend::Cpu, std::move(producer)), cache_(poolBricksOf(o)) {}
 
 MemoryReport SpFrameCpu::memory() const {
   MemoryReport m = cache_.memory();
@@ -90,7 +90,7 @@ namespace {
 
 class SpCpu final : public SpFrameCpu {
  public:
-  explicit SpCpu(const SchedulerOptions& o) : SpFrameCpu(o) {}
+  SpCpu(const SchedulerOptions& o, ProducerKernelsPtr p) : SpFrameCpu(o, std::move(p)) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
@@ -104,7 +104,7 @@ class SpCpu final : public SpFrameCpu {
     size_t n = static_cast<size_t>(f.pixelCount());
     live_.resize(n);
     next_.resize(n);
-    runSpLoopCpu(f, cache_, payload_.data(), live_, next_, 0, true, stats);
+    runSpLoopCpu(f, producer(), cache_, payload_.data(), live_, next_, 0, true, stats);
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
   }
@@ -114,8 +114,8 @@ class SpCpu final : public SpFrameCpu {
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& o) {
-  return std::make_unique<SpCpu>(o);
+std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<SpCpu>(o, std::move(producer));
 }
 
 }  // namespace gvdp

@@ -1,17 +1,19 @@
 #include "gvdp/sched/sp/sp_cuda.h"
+#include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/sp/sp.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp {
 
 namespace {
-void produceQueued(const FrameSetup& f, BrickCacheCuda& cache) {
+void produceQueued(const FrameSetup& f, const CudaProducerKernels& producer,
+                   BrickCacheCuda& cache) {
   NvtxRange range("production pass");
   uint32_t before[COUNTER_COUNT], after[COUNTER_COUNT];
   cache.readCounters(before);
   uint32_t requests = std::min(before[COUNTER_REQUESTS], cache.view().requestCapacity);
   if (requests == 0) return;
-  launchProduce(f, cache.view(), cache.pool(), requests);
+  producer.launchProduce(f, cache.view(), cache.pool(), requests);
   cache.clearRequests();
   cache.readCounters(after);
   if (after[COUNTER_FAILED] != before[COUNTER_FAILED] && cache.refill() == 0)
@@ -19,9 +21,9 @@ void produceQueued(const FrameSetup& f, BrickCacheCuda& cache) {
 }
 }  // namespace
 
-void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b, uint32_t liveCount,
-                   bool tiled, FrameStats& stats) {
-  produceQueued(f, cache);
+void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, BrickCacheCuda& cache,
+                   SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats) {
+  produceQueued(f, producer, cache);
   for (int pass = 0;; ++pass) {
     NvtxRange range("render pass");
     GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
@@ -38,7 +40,7 @@ void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b,
     // The GigaVoxels loop: the host reads the counts after every pass.
     GVDP_CUDA_CHECK(cudaMemcpy(&liveCount, b.counters.data(), 4, cudaMemcpyDeviceToHost));
     if (liveCount == 0) return;
-    produceQueued(f, cache);
+    produceQueued(f, producer, cache);
     if (stats.passes >= SP_MAX_PASSES) cache.setDegraded(true);
   }
 }
@@ -69,7 +71,7 @@ void SpFrameCuda::prepareFrame(const FrameSetup& f) {
 }
 
 void SpFrameCuda::finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) {
-  downloadImage(f, buffers_, out);
+  if (hostImageWanted()) downloadImage(f, buffers_, out);
   addCacheStats(cache_, stats);
 }
 
@@ -77,21 +79,21 @@ namespace {
 
 class SpCuda final : public SpFrameCuda {
  public:
-  explicit SpCuda(const SchedulerOptions& o) : SpFrameCuda(o) {}
+  SpCuda(const SchedulerOptions& o, ProducerKernelsPtr p) : SpFrameCuda(o, std::move(p)) {}
 
  private:
   void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("sp frame");
     cache_.beginFrame(f);
-    runSpLoopCuda(f, cache_, buffers_, 0, true, stats);
+    runSpLoopCuda(f, cudaProducer(), cache_, buffers_, 0, true, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_);
   }
 };
 
 }  // namespace
 
-std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& o) {
-  return std::make_unique<SpCuda>(o);
+std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& o, ProducerKernelsPtr producer) {
+  return std::make_unique<SpCuda>(o, std::move(producer));
 }
 
 }  // namespace gvdp

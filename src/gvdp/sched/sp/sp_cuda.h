@@ -13,8 +13,6 @@ void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const Br
 void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                       RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
                       uint32_t* passCounters);
-void launchProduce(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                   uint32_t requestCount);
 // Appends the pixels whose ray is not finished to `live`; passCounters[0] counts them.
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
                              uint32_t* passCounters);

@@ -1,9 +1,9 @@
 // CUDA kernels of the sp scheduler: render passes (Algorithm 1 over the tiled screen, then over
-// the compacted list of stopped rays), production (Algorithm 2, one block per brick) and resolve.
+// the compacted list of stopped rays) and resolve. Production depends on the producer:
+// sp_produce.cuh.
 #include "gvdp/profile/parallel_for.cuh"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/compaction.cuh"
-#include "gvdp/sched/produce_block.cuh"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp/sp_cuda.h"
 
@@ -15,7 +15,7 @@ constexpr int RENDER_BLOCK = 128;
 __global__ void __launch_bounds__(RENDER_BLOCK)
     firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                           uint32_t* next, uint32_t* passCounters) {
-  BlockTimer timer(TaskKind::Render);
+  BlockTimer timer(f.timeline, TaskKind::Render);
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
   bool stopped = false;
   if (pixel >= 0) {
@@ -29,22 +29,16 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
     renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                      const uint32_t* live, uint32_t liveCount, uint32_t* next,
                      uint32_t* passCounters) {
-  BlockTimer timer(TaskKind::Render);
+  BlockTimer timer(f.timeline, TaskKind::Render);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
   bool stopped = i < liveCount && renderRay(f, cache, pool, payload, static_cast<int>(pixel));
   appendStopped(stopped, pixel, next, &passCounters[0]);
 }
 
-__global__ void __launch_bounds__(PRODUCE_BLOCK)
-    produceKernel(FrameSetup f, CacheView cache, BrickPool pool) {
-  BlockTimer timer(TaskKind::Produce);
-  produceBrickBlock(f.scene, cache, pool, cache.requests[blockIdx.x]);
-}
-
 __global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, uint32_t* live,
                                         uint32_t* passCounters) {
-  BlockTimer timer(TaskKind::Sweep);
+  BlockTimer timer(f.timeline, TaskKind::Sweep);
   int pixel = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   bool unfinished = pixel < f.pixelCount() && !payload[pixel].finished(f.lod);
   appendStopped(unfinished, static_cast<uint32_t>(pixel), live, &passCounters[0]);
@@ -66,11 +60,6 @@ void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPo
       f, cache, pool, payload, live, liveCount, next, passCounters);
 }
 
-void launchProduce(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                   uint32_t requestCount) {
-  if (requestCount) produceKernel<<<requestCount, PRODUCE_BLOCK>>>(f, cache, pool);
-}
-
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
                              uint32_t* passCounters) {
   unsigned n = static_cast<unsigned>(f.pixelCount());
@@ -79,7 +68,7 @@ void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint3
 
 void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
                    uint32_t* passCounters) {
-  parallelForCuda("resolve", static_cast<uint32_t>(f.pixelCount()), TaskKind::Resolve,
+  parallelForCuda("resolve", static_cast<uint32_t>(f.pixelCount()), f.timeline, TaskKind::Resolve,
                   [=] __device__(uint32_t pixel) {
                     bool unfinished = false;
                     image[pixel] = resolveRay(f, payload, static_cast<int>(pixel), &unfinished);

@@ -14,9 +14,9 @@ namespace gvdp {
 // Runs passes until no ray is left. With `tiled`, the first pass covers every pixel in 8x8
 // tiles from a fresh state; otherwise it resumes the `liveCount` rays of `live`. Bricks already
 // queued (cache counters) are produced before the first pass. Adds to stats.passes.
-void runSpLoopCpu(const FrameSetup& f, BrickCacheCpu& cache, RayState* payload,
-                  std::vector<uint32_t>& live, std::vector<uint32_t>& next, uint32_t liveCount,
-                  bool tiled, FrameStats& stats);
+void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCacheCpu& cache,
+                  RayState* payload, std::vector<uint32_t>& live, std::vector<uint32_t>& next,
+                  uint32_t liveCount, bool tiled, FrameStats& stats);
 
 // Resolves every pixel to `out`; returns the unfinished ones.
 int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out);
@@ -25,7 +25,7 @@ int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out);
 // pixel, both begun afresh by beginRays(); memory() reports them, derived schedulers add theirs.
 class SpFrameCpu : public Scheduler {
  public:
-  explicit SpFrameCpu(const SchedulerOptions& o);
+  SpFrameCpu(const SchedulerOptions& o, ProducerKernelsPtr producer);
   MemoryReport memory() const override;
 
  protected:

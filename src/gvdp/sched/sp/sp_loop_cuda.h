@@ -27,17 +27,18 @@ struct SpBuffersCuda {
 
 // With `tiled`, the first pass starts every pixel afresh in 8x8 tiles; otherwise it resumes the
 // `liveCount` rays listed in b.live. Queued bricks are produced first. Adds to stats.passes.
-void runSpLoopCuda(const FrameSetup& f, BrickCacheCuda& cache, SpBuffersCuda& b, uint32_t liveCount,
-                   bool tiled, FrameStats& stats);
+void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, BrickCacheCuda& cache,
+                   SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats);
 
 // The frame of every cached CUDA scheduler around the sp loop's buffers (sp, graph; dp and pt
 // add their own): the brick cache and the buffers sized before the clock, the image downloaded
 // and the cache's statistics reported after it. Derived schedulers write renderFrame.
 class SpFrameCuda : public Scheduler {
  public:
-  explicit SpFrameCuda(const SchedulerOptions& o)
-      : Scheduler(Backend::Cuda), cache_(poolBricksOf(o)) {}
+  SpFrameCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
+      : Scheduler(Backend::Cuda, std::move(producer)), cache_(poolBricksOf(o)) {}
   MemoryReport memory() const override;
+  const uint32_t* deviceImage() const override { return buffers_.image.data(); }
 
  protected:
   void prepareFrame(const FrameSetup& f) override;

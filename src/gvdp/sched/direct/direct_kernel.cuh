@@ -1,23 +1,26 @@
 // CUDA kernel of the direct renderer: one thread per pixel in 8x8 tiles, same body as the CPU.
+#pragma once
+
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/render/direct.h"
-#include "gvdp/sched/direct/direct_cuda.h"
 
 namespace gvdp {
 
-__global__ void directKernel(FrameSetup frame, uint32_t* image) {
-  BlockTimer timer(TaskKind::Render);
+template <class P>
+__global__ void directKernel(FrameSetup frame, P producer, uint32_t* image) {
+  BlockTimer timer(frame.timeline, TaskKind::Render);
   int x = blockIdx.x * blockDim.x + threadIdx.x;
   int y = blockIdx.y * blockDim.y + threadIdx.y;
   if (x >= frame.width || y >= frame.height) return;
   int pixel = y * frame.width + x;
-  image[pixel] = renderDirectPixel(frame, pixel);
+  image[pixel] = renderDirectPixel(frame, producer, pixel);
 }
 
-void launchDirect(const FrameSetup& frame, uint32_t* image, cudaStream_t stream) {
+template <class P>
+void launchDirectKernel(const FrameSetup& frame, const P& producer, uint32_t* image) {
   dim3 block(8, 8);
   dim3 grid((frame.width + 7) / 8, (frame.height + 7) / 8);
-  directKernel<<<grid, block, 0, stream>>>(frame, image);
+  directKernel<<<grid, block>>>(frame, producer, image);
 }
 
 }  // namespace gvdp

@@ -1,0 +1,68 @@
+// gvdp's public API (docs/DESIGN.md "Public API"): a Renderer walks a world frame by frame, in
+// bounded memory, with one of the schedulers on either backend. Make one with makeRenderer:
+// from a built-in scene's name (here), or from your own producer type (gvdp/make_renderer.h).
+//
+//   gvdp::RendererOptions o;                    // CPU, sp, 160x100 unless told otherwise
+//   o.scheduler.backend = gvdp::Backend::Cuda;  // and .kind, .poolBricks, .timeline
+//   auto renderer = gvdp::makeRenderer("perlin", o);
+//   gvdp::Image image;
+//   gvdp::FrameStats stats = renderer->render(pose, image);
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "gvdp/base/camera.h"
+#include "gvdp/base/image.h"
+#include "gvdp/sched/scheduler.h"
+
+struct CUstream_st;  // cudaStream_t is CUstream_st*
+
+namespace gvdp {
+
+struct RendererOptions {
+  SchedulerOptions scheduler;  // backend, scheduler, pool size, dp's pending launches, timeline
+  int width = 160, height = 100;
+  int levels = DEFAULT_LEVELS;  // clipmap levels: the voxel size doubles per level
+  float fovDegrees = DEFAULT_FOV_DEGREES;
+};
+
+// Throws InputError naming the first bad value.
+void validate(const RendererOptions& options);
+
+class Renderer {
+ public:
+  // Use makeRenderer. Throws InputError for bad options or an unavailable backend.
+  Renderer(const RendererOptions& options, ProducerKernelsPtr producer);
+  ~Renderer();
+
+  // The options as used: every default resolved (pool size, pending launches).
+  const RendererOptions& options() const { return options_; }
+  // The world's finest voxel size.
+  float voxelSize0() const { return voxelSize0_; }
+
+  // Renders the next frame of the sequence from `pose` into a host image (resized to fit).
+  FrameStats render(const CameraPose& pose, Image& out);
+  // The same into `devicePixels` (width * height RGBA8 words of device memory), the copy
+  // enqueued on `stream` (cuda backend; the renderer's own work is finished when this returns).
+  FrameStats render(const CameraPose& pose, uint32_t* devicePixels, CUstream_st* stream);
+  // Bytes of every structure the renderer holds, by name.
+  MemoryReport memory() const;
+  // Frames rendered so far.
+  int frames() const { return frames_; }
+
+ private:
+  FrameSetup frameAt(const CameraPose& pose) const;
+
+  RendererOptions options_;
+  float voxelSize0_;
+  std::unique_ptr<Scheduler> scheduler_;
+  int frames_ = 0;
+};
+
+// A renderer of a built-in scene ("perlin", "fbm", "forest", "random-spheres",
+// "aligned-spheres"); throws InputError for an unknown name.
+std::unique_ptr<Renderer> makeRenderer(std::string_view scene, const RendererOptions& options);
+
+}  // namespace gvdp

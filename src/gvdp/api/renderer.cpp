@@ -1,0 +1,71 @@
+#include "gvdp/renderer.h"
+
+#include "gvdp/base/error.h"
+#include "gvdp/base/gpu.h"
+#include "gvdp/sched/builtin_producer.h"
+#include "gvdp/sched/graph/graph.h"
+#include "gvdp/world/registry.h"
+
+namespace gvdp {
+
+void validate(const RendererOptions& o) {
+  GVDP_INPUT_CHECK(o.width >= 8 && o.width <= 16384, "bad --width ", o.width,
+                   " (expected 8..16384)");
+  GVDP_INPUT_CHECK(o.height >= 8 && o.height <= 16384, "bad --height ", o.height,
+                   " (expected 8..16384)");
+  GVDP_INPUT_CHECK(static_cast<int64_t>(o.width) * o.height <= 64ll << 20, "bad size ", o.width,
+                   "x", o.height, " (at most 64 Mpixels)");
+  GVDP_INPUT_CHECK(o.levels >= 1 && o.levels <= MAX_LEVELS, "bad --levels ", o.levels,
+                   " (expected 1..", MAX_LEVELS, ")");
+  GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
+                   " (expected 1..150 degrees)");
+  if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
+}
+
+namespace {
+RendererOptions resolved(RendererOptions o) {
+  validate(o);
+  o.scheduler = resolvedOptions(o.scheduler);
+  return o;
+}
+}  // namespace
+
+Renderer::Renderer(const RendererOptions& options, ProducerKernelsPtr producer)
+    : options_(resolved(options)),
+      voxelSize0_(producer->voxelSize0()),
+      scheduler_(makeScheduler(options_.scheduler, std::move(producer))) {
+  GVDP_INPUT_CHECK(voxelSize0_ > 0.0f && voxelSize0_ < 1e6f, "bad producer voxelSize0() ",
+                   voxelSize0_, " (expected a positive size below 1e6)");
+}
+
+Renderer::~Renderer() = default;
+
+FrameSetup Renderer::frameAt(const CameraPose& pose) const {
+  return makeFrame(pose, voxelSize0_, options_.width, options_.height, options_.levels, frames_,
+                   options_.fovDegrees);
+}
+
+FrameStats Renderer::render(const CameraPose& pose, Image& out) {
+  FrameStats stats = scheduler_->render(frameAt(pose), &out);
+  ++frames_;
+  return stats;
+}
+
+FrameStats Renderer::render(const CameraPose& pose, uint32_t* devicePixels, CUstream_st* stream) {
+  GVDP_INPUT_CHECK(devicePixels, "render to device memory: null pixel pointer");
+  FrameStats stats = scheduler_->render(frameAt(pose), nullptr);
+  ++frames_;
+  copyDeviceAsync(devicePixels, scheduler_->deviceImage(),
+                  static_cast<size_t>(options_.width) * options_.height * sizeof(uint32_t), stream);
+  return stats;
+}
+
+MemoryReport Renderer::memory() const {
+  return scheduler_->memory();
+}
+
+std::unique_ptr<Renderer> makeRenderer(std::string_view scene, const RendererOptions& options) {
+  return std::make_unique<Renderer>(options, builtinProducerKernels(findScene(scene).world));
+}
+
+}  // namespace gvdp

@@ -1,0 +1,100 @@
+// CUDA kernels of the dp scheduler: render tasks and production tasks that launch each other
+// with CUDA Dynamic Parallelism (CDP2, fire-and-forget streams), as in paper 3.3. Every task
+// reads the frame's context from device memory (a pointer, so launches stay small and no device
+// global is shared between renderers). Device-side launches need relocatable device code:
+// instantiate these only where __CUDACC_RDC__ is defined (producer_kernels_of.h).
+#pragma once
+
+#include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/sched/dp/dp_body.h"
+#include "gvdp/sched/produce_block.cuh"
+
+namespace gvdp {
+
+// Kernels nest at most this deep (CUDA's launch nesting limit is 24); a production that would
+// go deeper is queued for the host's sweep instead (counted as DP_DEFERRED).
+constexpr int DP_MAX_DEPTH = 23;
+constexpr int DP_RELAUNCH_BLOCK = 16;
+
+template <class P>
+__global__ void dpProduceKernel(const DpContext* ctx, P producer, BrickKey key, int depth);
+template <class P>
+__global__ void dpRenderRectKernel(const DpContext* ctx, P producer, PixelRect rect, int depth);
+
+template <class P>
+struct GpuLauncher {
+  const DpContext* ctx;
+  const P& producer;
+  int depth;  // of the grid this thread runs in
+
+  __device__ void produce(const BrickKey& key, uint32_t* entry) const {
+    if (depth + 1 > DP_MAX_DEPTH) {
+      requestBrick(ctx->cache, key.level, key.brick);
+      atomicAdd(&ctx->counters[DP_DEFERRED], 1u);
+      return;
+    }
+    dpProduceKernel<<<1, PRODUCE_BLOCK, 0, cudaStreamFireAndForget>>>(ctx, producer, key,
+                                                                      depth + 1);
+    if (cudaGetLastError() == cudaSuccess) {
+      atomicAdd(&ctx->counters[DP_PRODUCTIONS], 1u);
+    } else {  // refused: the brick is MISSING again; its rays are left to the sweep
+      storeRelease32(entry, ENTRY_MISSING);
+      atomicAdd(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
+    }
+  }
+
+  __device__ void relaunch(const PixelRect& r) const {
+    if (r.width() <= 0 || r.height() <= 0) return;
+    if (depth + 1 > DP_MAX_DEPTH) {
+      atomicAdd(&ctx->counters[DP_DEFERRED], 1u);
+      return;
+    }
+    dim3 block(DP_RELAUNCH_BLOCK, DP_RELAUNCH_BLOCK);
+    dim3 grid((r.width() + DP_RELAUNCH_BLOCK - 1) / DP_RELAUNCH_BLOCK,
+              (r.height() + DP_RELAUNCH_BLOCK - 1) / DP_RELAUNCH_BLOCK);
+    dpRenderRectKernel<<<grid, block, 0, cudaStreamFireAndForget>>>(ctx, producer, r, depth + 1);
+    if (cudaGetLastError() == cudaSuccess)
+      atomicAdd(&ctx->counters[DP_RELAUNCHES], 1u);
+    else
+      atomicAdd(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
+  }
+};
+
+template <class P>
+__global__ void __launch_bounds__(PRODUCE_BLOCK)
+    dpProduceKernel(const DpContext* ctx, P producer, BrickKey key, int depth) {
+  BlockTimer timer(ctx->frame.timeline, TaskKind::Produce);
+  produceBrickBlock(producer, ctx->cache, ctx->pool, key);
+  if (threadIdx.x == 0)
+    GpuLauncher<P>{ctx, producer, depth}.relaunch(
+        brickScreenRect(ctx->frame, ctx->cache.clipmap, key));
+}
+
+template <class P>
+__global__ void dpRenderRectKernel(const DpContext* ctx, P producer, PixelRect rect, int depth) {
+  BlockTimer timer(ctx->frame.timeline, TaskKind::Render);
+  int x = rect.x0 + static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  int y = rect.y0 + static_cast<int>(blockIdx.y * blockDim.y + threadIdx.y);
+  if (x >= rect.x1 || y >= rect.y1) return;
+  GpuLauncher<P> launcher{ctx, producer, depth};
+  dpRenderPixel(*ctx, ctx->pool, launcher, y * ctx->frame.width + x);
+}
+
+template <class P>
+__global__ void __launch_bounds__(DP_TILE_W* DP_TILE_H)
+    dpRootKernel(const DpContext* ctx, P producer) {
+  BlockTimer timer(ctx->frame.timeline, TaskKind::Render);
+  int pixel = dpTilePixel(ctx->frame, static_cast<int>(blockIdx.x), static_cast<int>(threadIdx.x));
+  if (pixel < 0) return;
+  GpuLauncher<P> launcher{ctx, producer, 0};
+  dpRenderPixel(*ctx, ctx->pool, launcher, pixel);
+}
+
+// The root render grid (32x16 tiles) over the context in device memory; the whole tree of
+// device launches has finished when the stream reaches the next command.
+template <class P>
+void launchDpRoot(const DpContext* deviceContext, const FrameSetup& frame, const P& producer) {
+  dpRootKernel<<<dpTileCount(frame), DP_TILE_W * DP_TILE_H>>>(deviceContext, producer);
+}
+
+}  // namespace gvdp
