@@ -2,6 +2,8 @@
 // bodies (cache_ops.h) run on the thread pool.
 #pragma once
 
+#include <algorithm>
+
 #include <vector>
 
 #include "gvdp/cache/cache_host.h"
@@ -24,6 +26,7 @@ class BrickCacheCpu {
   CacheView view();
   BrickPool pool() { return BrickPool{texels_.data()}; }
   const uint32_t* counters() const { return counters_; }
+  void readCounters(uint32_t* out) const { std::copy_n(counters_, COUNTER_COUNT, out); }
   void setDegraded(bool d) { degraded_ = d; }
   bool degraded() const { return degraded_; }
   void clearRequests() { counters_[COUNTER_REQUESTS] = 0; }

@@ -1,11 +1,14 @@
 // CUDA kernels of the dp scheduler: render tasks and production tasks that launch each other
 // with CUDA Dynamic Parallelism (CDP2, fire-and-forget streams), as in paper 3.3. Every task
-// reads the frame's context from device memory (a pointer, so launches stay small and no device
-// global is shared between renderers). Device-side launches need relocatable device code:
-// instantiate these only where __CUDACC_RDC__ is defined (producer_kernels_of.h).
+// gets the frame's context in device memory (a pointer, so launches stay small and no device
+// global is shared between renderers); render tasks read it from a copy in shared memory
+// (block_copy.cuh), and pass the global pointer on to the tasks they launch. Device-side launches
+// need relocatable device code: instantiate these only where __CUDACC_RDC__ is defined
+// (producer_kernels_of.h).
 #pragma once
 
 #include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/sched/block_copy.cuh"
 #include "gvdp/sched/dp/dp_body.h"
 #include "gvdp/sched/produce_block.cuh"
 
@@ -72,22 +75,24 @@ __global__ void __launch_bounds__(PRODUCE_BLOCK)
 
 template <class P>
 __global__ void dpRenderRectKernel(const DpContext* ctx, P producer, PixelRect rect, int depth) {
-  BlockTimer timer(ctx->frame.timeline, TaskKind::Render);
+  const DpContext& local = blockCopy(ctx);
+  BlockTimer timer(local.frame.timeline, TaskKind::Render);
   int x = rect.x0 + static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   int y = rect.y0 + static_cast<int>(blockIdx.y * blockDim.y + threadIdx.y);
   if (x >= rect.x1 || y >= rect.y1) return;
   GpuLauncher<P> launcher{ctx, producer, depth};
-  dpRenderPixel(*ctx, ctx->pool, launcher, y * ctx->frame.width + x);
+  dpRenderPixel(local, local.pool, launcher, y * local.frame.width + x);
 }
 
 template <class P>
 __global__ void __launch_bounds__(DP_TILE_W* DP_TILE_H)
     dpRootKernel(const DpContext* ctx, P producer) {
-  BlockTimer timer(ctx->frame.timeline, TaskKind::Render);
-  int pixel = dpTilePixel(ctx->frame, static_cast<int>(blockIdx.x), static_cast<int>(threadIdx.x));
+  const DpContext& local = blockCopy(ctx);
+  BlockTimer timer(local.frame.timeline, TaskKind::Render);
+  int pixel = dpTilePixel(local.frame, static_cast<int>(blockIdx.x), static_cast<int>(threadIdx.x));
   if (pixel < 0) return;
   GpuLauncher<P> launcher{ctx, producer, 0};
-  dpRenderPixel(*ctx, ctx->pool, launcher, pixel);
+  dpRenderPixel(local, local.pool, launcher, pixel);
 }
 
 // The root render grid (32x16 tiles) over the context in device memory; the whole tree of

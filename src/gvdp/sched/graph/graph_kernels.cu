@@ -4,6 +4,7 @@
 // (cudaGraphSetConditional). The production node depends on the producer: graph_produce.cuh.
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/sched/block_copy.cuh"
 #include "gvdp/sched/compaction.cuh"
 #include "gvdp/sched/graph/graph_cuda.h"
 #include "gvdp/sched/producer_kernels_cuda.h"
@@ -18,7 +19,7 @@ constexpr int RENDER_BLOCK = 128;
 // Pass 0 covers the screen in 8x8 tiles from fresh states; later passes the live list.
 __global__ void __launch_bounds__(RENDER_BLOCK)
     graphRenderKernel(const GraphFrame* __restrict__ frame, GraphLoop* loop) {
-  const GraphFrame& graphFrame = *frame;
+  const GraphFrame& graphFrame = blockCopy(frame);
   BlockTimer timer(graphFrame.frame.timeline, TaskKind::Render);
   const FrameSetup& f = graphFrame.frame;
   bool tiled = loop->passes == 0;

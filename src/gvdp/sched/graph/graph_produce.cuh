@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gvdp/profile/timeline_device.cuh"
+#include "gvdp/sched/block_copy.cuh"
 #include "gvdp/sched/graph/graph_frame.h"
 #include "gvdp/sched/produce_block.cuh"
 
@@ -10,7 +11,8 @@ namespace gvdp {
 
 template <class P>
 __global__ void __launch_bounds__(PRODUCE_BLOCK)
-    graphProduceKernel(const GraphFrame* frame, GraphLoop* loop, P producer) {
+    graphProduceKernel(const GraphFrame* globalFrame, GraphLoop* loop, P producer) {
+  const GraphFrame* frame = &blockCopy(globalFrame);
   BlockTimer timer(frame->frame.timeline, TaskKind::Produce);
   if (loop->stop) return;
   const CacheView& cache = frame->cache;

@@ -5,38 +5,41 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp/sp.h"
+#include "gvdp/sched/sp/sp_loop.h"
 #include "gvdp/sched/sp/sp_loop_cpu.h"
 
 namespace gvdp {
 
 namespace {
-void produceQueued(const ProducerKernels& producer, BrickCacheCpu& cache) {
-  CacheView view = cache.view();
-  uint32_t requests = std::min(cache.counters()[COUNTER_REQUESTS], view.requestCapacity);
-  uint32_t failedBefore = cache.counters()[COUNTER_FAILED];
-  const BrickKey* keys = cache.requests();
-  parallelFor(
-      requests, [&](int64_t i) { producer.produceBrick(view, cache.pool(), keys[i]); }, 1,
-      static_cast<uint8_t>(TaskKind::Produce));
-  cache.clearRequests();
-  if (cache.counters()[COUNTER_FAILED] != failedBefore && cache.refill() == 0)
-    cache.setDegraded(true);
-}
-}  // namespace
+// The sp loop's steps on the CPU backend (sp_loop.h).
+struct SpStepsCpu {
+  const FrameSetup& f;
+  const ProducerKernels& producer;
+  BrickCacheCpu& cache_;
+  RayState* payload;
+  std::vector<uint32_t>& live;
+  std::vector<uint32_t>& next;
 
-void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCacheCpu& cache,
-                  RayState* payload, std::vector<uint32_t>& live, std::vector<uint32_t>& next,
-                  uint32_t liveCount, bool tiled, FrameStats& stats) {
-  BrickPool pool = cache.pool();
-  produceQueued(producer, cache);
-  for (int pass = 0;; ++pass) {
-    CacheView view = cache.view();
+  BrickCacheCpu& cache() { return cache_; }
+
+  void produce(uint32_t requests) {
+    CacheView view = cache_.view();
+    BrickPool pool = cache_.pool();
+    const BrickKey* keys = cache_.requests();
+    parallelFor(
+        requests, [&](int64_t i) { producer.produceBrick(view, pool, keys[i]); }, 1,
+        static_cast<uint8_t>(TaskKind::Produce));
+  }
+
+  uint32_t renderPass(bool tiled, uint32_t liveCount) {
+    CacheView view = cache_.view();
+    BrickPool pool = cache_.pool();
     uint32_t nextCount = 0;
     auto renderItem = [&](int pixel) {
       if (renderRay(f, view, pool, payload, pixel))
         next[atomicAdd32(&nextCount, 1u)] = static_cast<uint32_t>(pixel);
     };
-    if (pass == 0 && tiled) {
+    if (tiled) {
       parallelFor(
           tileCount(f) * TILE * TILE,
           [&](int64_t i) {
@@ -49,13 +52,17 @@ void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCac
           liveCount, [&](int64_t i) { renderItem(static_cast<int>(live[i])); }, 32,
           static_cast<uint8_t>(TaskKind::Render));
     }
-    ++stats.passes;
     std::swap(live, next);
-    liveCount = nextCount;
-    if (liveCount == 0) return;
-    produceQueued(producer, cache);
-    if (stats.passes >= SP_MAX_PASSES) cache.setDegraded(true);
+    return nextCount;
   }
+};
+}  // namespace
+
+void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCacheCpu& cache,
+                  RayState* payload, std::vector<uint32_t>& live, std::vector<uint32_t>& next,
+                  uint32_t liveCount, bool tiled, FrameStats& stats) {
+  SpStepsCpu steps{f, producer, cache, payload, live, next};
+  runSpLoop(steps, liveCount, tiled, stats);
 }
 
 int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out) {

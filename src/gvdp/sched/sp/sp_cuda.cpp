@@ -1,48 +1,50 @@
 #include "gvdp/sched/sp/sp_cuda.h"
 #include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/sp/sp.h"
+#include "gvdp/sched/sp/sp_loop.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp {
 
 namespace {
-void produceQueued(const FrameSetup& f, const CudaProducerKernels& producer,
-                   BrickCacheCuda& cache) {
-  NvtxRange range("production pass");
-  uint32_t before[COUNTER_COUNT], after[COUNTER_COUNT];
-  cache.readCounters(before);
-  uint32_t requests = std::min(before[COUNTER_REQUESTS], cache.view().requestCapacity);
-  if (requests == 0) return;
-  producer.launchProduce(f, cache.view(), cache.pool(), requests);
-  cache.clearRequests();
-  cache.readCounters(after);
-  if (after[COUNTER_FAILED] != before[COUNTER_FAILED] && cache.refill() == 0)
-    cache.setDegraded(true);
-}
+// The sp loop's steps on the CUDA backend (sp_loop.h): the host reads the counts after every
+// pass, as GigaVoxels does.
+struct SpStepsCuda {
+  const FrameSetup& f;
+  const CudaProducerKernels& producer;
+  BrickCacheCuda& cache_;
+  SpBuffersCuda& b;
+
+  BrickCacheCuda& cache() { return cache_; }
+
+  void produce(uint32_t requests) {
+    NvtxRange range("production pass");
+    producer.launchProduce(f, cache_.view(), cache_.pool(), requests);
+  }
+
+  uint32_t renderPass(bool tiled, uint32_t liveCount) {
+    NvtxRange range("render pass");
+    GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
+    if (tiled) {
+      launchFirstRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.next.data(),
+                            b.counters.data());
+    } else {
+      launchRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.live.data(), liveCount,
+                       b.next.data(), b.counters.data());
+    }
+    GVDP_CUDA_CHECK(cudaGetLastError());
+    std::swap(b.live, b.next);
+    uint32_t stopped = 0;
+    GVDP_CUDA_CHECK(cudaMemcpy(&stopped, b.counters.data(), 4, cudaMemcpyDeviceToHost));
+    return stopped;
+  }
+};
 }  // namespace
 
 void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, BrickCacheCuda& cache,
                    SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats) {
-  produceQueued(f, producer, cache);
-  for (int pass = 0;; ++pass) {
-    NvtxRange range("render pass");
-    GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
-    if (pass == 0 && tiled) {
-      launchFirstRenderPass(f, cache.view(), cache.pool(), b.payload.data(), b.next.data(),
-                            b.counters.data());
-    } else {
-      launchRenderPass(f, cache.view(), cache.pool(), b.payload.data(), b.live.data(), liveCount,
-                       b.next.data(), b.counters.data());
-    }
-    GVDP_CUDA_CHECK(cudaGetLastError());
-    ++stats.passes;
-    std::swap(b.live, b.next);
-    // The GigaVoxels loop: the host reads the counts after every pass.
-    GVDP_CUDA_CHECK(cudaMemcpy(&liveCount, b.counters.data(), 4, cudaMemcpyDeviceToHost));
-    if (liveCount == 0) return;
-    produceQueued(f, producer, cache);
-    if (stats.passes >= SP_MAX_PASSES) cache.setDegraded(true);
-  }
+  SpStepsCuda steps{f, producer, cache, b};
+  runSpLoop(steps, liveCount, tiled, stats);
 }
 
 int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b) {

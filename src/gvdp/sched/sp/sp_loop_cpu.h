@@ -1,6 +1,5 @@
-// The sp loop on the CPU backend, shared by `sp` (the whole frame) and by `dp` (its sweep of
-// rays a device-side schedule left unfinished): render pass over the live rays -> production of
-// the queued bricks -> the stopped rays -> repeat.
+// The sp loop on the CPU backend (the loop itself: sp_loop.h), shared by `sp` (the whole frame)
+// and by `dp` (its sweep of rays a device-side schedule left unfinished).
 #pragma once
 
 #include <vector>

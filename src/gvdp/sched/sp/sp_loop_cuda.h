@@ -1,5 +1,5 @@
-// The sp loop on the CUDA backend, shared by `sp` (the whole frame) and `dp` (the sweep of rays
-// its device-side schedule left unfinished). See sp_loop_cpu.h.
+// The sp loop on the CUDA backend (the loop itself: sp_loop.h), shared by `sp` (the whole frame)
+// and `dp` (the sweep of rays its device-side schedule left unfinished). See sp_loop_cpu.h.
 #pragma once
 
 #include "gvdp/base/cuda_util.h"
