@@ -51,7 +51,7 @@ void expectConsistent(const BrickCacheCpu& c) {
 // Requests and produces the bricks under random samples around the eye, as rays would.
 void touchRandomBricks(BrickCacheCpu& c, const FrameSetup& f, std::mt19937& rng, int n) {
   CacheView v = c.view();
-  BrickPool pool{c.texels()};
+  BrickPool pool = c.pool();
   CachedAccess<BrickPool> access{v, pool, f.lod};
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   for (int i = 0; i < n; ++i) {
@@ -60,8 +60,8 @@ void touchRandomBricks(BrickCacheCpu& c, const FrameSetup& f, std::mt19937& rng,
     Vec3f p = f.eye + Vec3f{u(rng), u(rng), u(rng)} * reach;
     access.lookup(level, floorToInt(p / f.lod.voxelSize(level) * (1.0f / BRICK_WIDTH)));
     // The queue holds one request per ray of a pass: produce in batches below that.
-    if (c.counters()[COUNTER_REQUESTS] + 1 >= v.requestCapacity || i + 1 == n) {
-      uint32_t requests = c.counters()[COUNTER_REQUESTS];
+    if (v.counters[COUNTER_REQUESTS] + 1 >= v.requestCapacity || i + 1 == n) {
+      uint32_t requests = v.counters[COUNTER_REQUESTS];
       for (uint32_t r = 0; r < requests; ++r) produce(c, v, c.requests()[r]);
       c.clearRequests();
     }
@@ -139,7 +139,7 @@ TEST(Cache, BrickBordersAreSeamless) {
       uint32_t sa = cache.entries()[m.entryIndex(level, ka.brick)];
       uint32_t sb = cache.entries()[m.entryIndex(level, kb.brick)];
       if (!isSlot(sa) || !isSlot(sb)) continue;
-      BrickPool pool{cache.texels()};
+      BrickPool pool = cache.pool();
       for (int k = 0; k < 20; ++k, ++tested) {
         Vec3f p{8.0f * (x + 1), 8.0f * y + u(rng), u(rng)};  // on the face, voxel units
         Vec4f ca = pool.sample(sa, {8 * a.x, 8 * a.y, 8 * a.z}, p);

@@ -1,58 +1,43 @@
-// The CPU backend's brick cache: the structures of paper 3.2 in host memory, with the same
-// bodies (cache_ops.h) run on the thread pool.
+// The CPU backend's brick cache: BrickCache (brick_cache.h) over host vectors, the bodies of
+// cache_ops.h run on the thread pool, the LRU order by std::sort.
 #pragma once
 
-#include <algorithm>
-
+#include <cstdint>
 #include <vector>
 
-#include "gvdp/cache/cache_host.h"
-#include "gvdp/render/brick_pool.h"
-#include "gvdp/render/frame.h"
-#include "gvdp/world/voxel.h"
+#include "gvdp/cache/brick_cache.h"
 
 namespace gvdp {
 
-class BrickCacheCpu {
+class HostCacheOps {
  public:
-  explicit BrickCacheCpu(uint32_t poolBricks);
+  template <class T>
+  using Buffer = std::vector<T>;
+  static constexpr const char* LRU_NAME = "free_slot_list_and_lru_sort";
 
-  // Frame start: move the clipmap windows (reset the slabs left), stamp the frame, refill the
-  // free slot list from the least recently used slots, size the request queue for the frame.
-  void beginFrame(const FrameSetup& frame);
-  // Mid-frame refill from the slots not used in this frame; returns the slots obtained.
-  uint32_t refill();
+  explicit HostCacheOps(uint32_t poolBricks) : order_(poolBricks), slots_(poolBricks) {}
 
-  CacheView view();
-  BrickPool pool() { return BrickPool{texels_.data()}; }
-  const uint32_t* counters() const { return counters_; }
-  void readCounters(uint32_t* out) const { std::copy_n(counters_, COUNTER_COUNT, out); }
-  void setDegraded(bool d) { degraded_ = d; }
-  bool degraded() const { return degraded_; }
-  void clearRequests() { counters_[COUNTER_REQUESTS] = 0; }
-  const BrickKey* requests() const { return requests_.data(); }
-
-  Rgba8* texels() { return texels_.data(); }
-  uint32_t poolBricks() const { return poolBricks_; }
-  CacheStats frameStats() const;
-  MemoryReport memory() const;
-
-  // For tests: the raw tables.
-  const std::vector<uint32_t>& entries() const { return entries_; }
-  const std::vector<BrickKey>& inverse() const { return inverse_; }
-  const std::vector<uint32_t>& timestamps() const { return timestamps_; }
-  const Clipmap& clipmap() const { return clipmap_; }
+  template <class T>
+  static void fillBytes(std::vector<T>& b, int byte) {
+    fillBytes(b.data(), b.size() * sizeof(T), byte);
+  }
+  static void fillBytes(void* p, size_t bytes, int byte);
+  static void zero(uint32_t* p, size_t n);
+  static void read(const uint32_t* from, uint32_t* to, size_t n);
+  static void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView&);
+  const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
+                          uint32_t counts[2], const TimelineView&);
+  static void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
+                         const TimelineView&);
+  size_t lruBytes() const {
+    return slots_.size() * sizeof(uint32_t) + order_.size() * sizeof(uint64_t);
+  }
 
  private:
-  uint32_t poolBricks_;
-  ClipmapTracker tracker_;
-  Clipmap clipmap_{};
-  std::vector<uint32_t> entries_, timestamps_, freeSlots_;
-  std::vector<BrickKey> inverse_, requests_;
-  std::vector<Rgba8> texels_;
-  uint32_t counters_[COUNTER_COUNT] = {};
-  uint32_t freeCount_ = 0, frame_ = 0, refills_ = 0;
-  bool degraded_ = false;
+  std::vector<uint64_t> order_;  // (timestamp, slot), the sort's keys
+  std::vector<uint32_t> slots_;  // the slots, oldest first: the free slot list is its head
 };
+
+using BrickCacheCpu = BrickCache<HostCacheOps>;
 
 }  // namespace gvdp

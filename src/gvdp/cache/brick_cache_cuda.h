@@ -1,48 +1,42 @@
-// The CUDA backend's brick cache: the structures of paper 3.2 in device memory (the pool as in
-// render/brick_pool.h), the LRU free-slot list refilled with a CUB radix sort of the timestamps.
-// Host code drives it; the bodies are cache_ops.h, launched from cache_kernels.cu.
+// The CUDA backend's brick cache: BrickCache (brick_cache.h) over device buffers, the bodies of
+// cache_ops.h launched from cache_kernels.cu, the LRU order by a CUB radix sort of the
+// timestamps.
 #pragma once
 
+#include <cstdint>
+
 #include "gvdp/base/cuda_util.h"
-#include "gvdp/cache/cache_host.h"
-#include "gvdp/render/brick_pool.h"
-#include "gvdp/render/frame.h"
+#include "gvdp/cache/brick_cache.h"
 
 namespace gvdp {
 
-class BrickCacheCuda {
+class CudaCacheOps {
  public:
-  explicit BrickCacheCuda(uint32_t poolBricks);
-  BrickCacheCuda(const BrickCacheCuda&) = delete;
-  BrickCacheCuda& operator=(const BrickCacheCuda&) = delete;
+  template <class T>
+  using Buffer = DeviceBuffer<T>;
+  static constexpr const char* LRU_NAME = "free_slot_list_and_lru_sort";
 
-  void beginFrame(const FrameSetup& frame);
-  uint32_t refill();  // from the slots unused in this frame; returns the slots obtained
+  explicit CudaCacheOps(uint32_t poolBricks);
 
-  CacheView view() const;
-  const BrickPool& pool() const { return pool_; }
-  void setDegraded(bool d) { degraded_ = d; }
-  bool degraded() const { return degraded_; }
-  // Reads the counters back (synchronises the stream).
-  void readCounters(uint32_t* out) const;
-  void clearRequests();
-  CacheStats frameStats();
-  MemoryReport memory() const;
+  template <class T>
+  static void fillBytes(DeviceBuffer<T>& b, int byte) {
+    fillBytes(b.data(), b.bytes(), byte);
+  }
+  static void fillBytes(void* p, size_t bytes, int byte);
+  static void zero(uint32_t* p, size_t n);
+  static void read(const uint32_t* from, uint32_t* to, size_t n);  // synchronises
+  static void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView& t);
+  const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
+                          uint32_t counts[2], const TimelineView& t);
+  static void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
+                         const TimelineView& t);
+  size_t lruBytes() const;
 
  private:
-  uint32_t poolBricks_;
-  ClipmapTracker tracker_;
-  Clipmap clipmap_{};
-  DeviceBuffer<uint32_t> entries_, timestamps_, counters_;
-  DeviceBuffer<BrickKey> inverse_, requests_;
-  DeviceBuffer<uint32_t> sortKeysIn_, sortKeysOut_, sortValuesIn_, sortValuesOut_, freeCount_;
-  DeviceBuffer<uint8_t> sortTemp_;
-  DeviceBuffer<Rgba8> texels_;
-  BrickPool pool_{};
-  TimelineView timeline_{};  // the frame's (beginFrame)
-  uint32_t freeCountHost_ = 0, frame_ = 0, refills_ = 0;
-  uint64_t resident_ = 0;
-  bool degraded_ = false;
+  DeviceBuffer<uint32_t> keysIn_, keysOut_, valuesIn_, valuesOut_, counts_;
+  DeviceBuffer<uint8_t> temp_;
 };
+
+using BrickCacheCuda = BrickCache<CudaCacheOps>;
 
 }  // namespace gvdp

@@ -14,7 +14,7 @@ namespace {
 // pt's worker warps on CUDA (pt_cuda.cpp: blocks x 8): about 4096 on a large GPU.
 constexpr uint32_t PT_CUDA_WORKER_WARPS = 4096;
 
-// The brick cache (brick_cache_cpu.cpp, brick_cache_cuda.cpp).
+// The brick cache (brick_cache.h and its two backends' operations).
 MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
   size_t k = poolBricksOf(o), pixels = static_cast<size_t>(f.pixelCount());
   MemoryReport m = {{"brick_pool", k * BRICK_SAMPLE_COUNT * sizeof(Rgba8)},
@@ -25,8 +25,8 @@ MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
     // Keys and values in and out, and cub's scratch: about one more copy of keys and values.
     m.push_back({"free_slot_list_and_lru_sort", 6 * k * sizeof(uint32_t)});
   } else {
-    m.push_back({"free_slot_list", k * sizeof(uint32_t)});
-    m.push_back({"lru_sort", k * sizeof(uint64_t)});  // refill()'s (timestamp, slot) order
+    // The slots oldest first and the sort's (timestamp, slot) keys.
+    m.push_back({"free_slot_list_and_lru_sort", k * (sizeof(uint32_t) + sizeof(uint64_t))});
   }
   m.push_back({"request_queue", pixels * sizeof(BrickKey)});
   return m;
@@ -52,9 +52,7 @@ void addCpuRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
     case SchedulerKind::Dp:
       m.push_back({"ray_payload", payload});
       m.push_back({"ray_locks", list});
-      m.push_back(
-          {"task_queue",
-           dpCpuTaskQueueBytes(pendingLaunchesOf(o))});
+      m.push_back({"task_queue", dpCpuTaskQueueBytes(pendingLaunchesOf(o))});
       m.push_back({"sweep_ray_lists", 2 * list});
       break;
     case SchedulerKind::Pt:

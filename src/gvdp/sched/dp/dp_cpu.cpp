@@ -98,8 +98,7 @@ class DpCpu final : public SpFrameCpu {
     sweep(f, stats);
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
-    stats.degraded = stats.degraded || counters[DP_LAUNCH_FAILURES] != 0 ||
-                     cache_.counters()[COUNTER_FAILED] != 0;
+    stats.degraded = stats.degraded || counters[DP_LAUNCH_FAILURES] != 0 || stats.cache.failed != 0;
     stats.launches = counters[DP_PRODUCTIONS] + counters[DP_RELAUNCHES];
     stats.launchFailures = counters[DP_LAUNCH_FAILURES];
   }
@@ -110,7 +109,9 @@ class DpCpu final : public SpFrameCpu {
     for (uint32_t i = 0; i < static_cast<uint32_t>(f.pixelCount()); ++i)
       if (!payload_[i].finished(f.lod)) live_.push_back(i);
     stats.sweptPixels = static_cast<int64_t>(live_.size());
-    if (live_.empty() && cache_.counters()[COUNTER_REQUESTS] == 0) return;
+    uint32_t c[COUNTER_COUNT];
+    cache_.readCounters(c);
+    if (live_.empty() && c[COUNTER_REQUESTS] == 0) return;
     next_.resize(f.pixelCount());
     live_.resize(f.pixelCount());
     // A degraded frame keeps degrading; the sweep itself may refill the free list.

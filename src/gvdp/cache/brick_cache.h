@@ -1,0 +1,147 @@
+// The brick cache's host side (paper 3.2), written once over a backend's buffers and operations:
+// the clipmap from frame to frame, the indirection and inverse tables, timestamps, the LRU free
+// slot list, the request queue and the counters, with the bodies of cache_ops.h run by the
+// backend. Ops (HostCacheOps: brick_cache_cpu.h; CudaCacheOps: brick_cache_cuda.h) supplies
+//   template <class T> using Buffer             owning array: data(), size(), Buffer<T>(n)
+//   fillBytes(Buffer<T>&, int byte)             every byte set (memset)
+//   zero(uint32_t* p, size_t n), read(const uint32_t* from, uint32_t* to, size_t n)
+//   resetSlabs(view, slabs, timeline)           the slabs the clipmap windows left (cache_ops.h)
+//   sortLru(timestamps, n, frame, counts, timeline) -> const uint32_t*   the slots by timestamp,
+//                                               oldest first; counts[0] = slots stamped 0,
+//                                               counts[1] = slots stamped before `frame`
+//   unmapSlots(view, slots, n, timeline)        the head of that list, unmapped (cache_ops.h)
+//   lruBytes(), LRU_NAME                        what the sort holds, for the memory report
+#pragma once
+
+#include <cstdint>
+
+#include "gvdp/base/error.h"
+#include "gvdp/cache/cache_host.h"
+#include "gvdp/render/brick_pool.h"
+#include "gvdp/render/frame.h"
+#include "gvdp/world/voxel.h"
+
+namespace gvdp {
+
+template <class Ops>
+class BrickCache {
+ public:
+  template <class T>
+  using Buffer = typename Ops::template Buffer<T>;
+
+  explicit BrickCache(uint32_t poolBricks)
+      : poolBricks_(poolBricks),
+        timestamps_(poolBricks),
+        counters_(COUNTER_COUNT),
+        inverse_(poolBricks),
+        ops_(poolBricks) {
+    GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
+    texels_ = Buffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
+  }
+  BrickCache(const BrickCache&) = delete;
+  BrickCache& operator=(const BrickCache&) = delete;
+
+  // Frame start: move the clipmap windows (reset the slabs left, or everything when the
+  // geometry changed), stamp the frame, size the request queue, refill the free slot list.
+  void beginFrame(const FrameSetup& frame) {
+    ClipmapTracker::Update u = tracker_.next(frame);
+    clipmap_ = u.clipmap;
+    timeline_ = frame.timeline;
+    ops_.zero(counters_.data(), COUNTER_COUNT);
+    degraded_ = false;
+    ++frame_;
+    if (u.fullReset) {
+      if (entries_.size() != clipmap_.entryCount())
+        entries_ = Buffer<uint32_t>(clipmap_.entryCount());
+      Ops::fillBytes(entries_, 0xff);  // ENTRY_MISSING
+      Ops::fillBytes(timestamps_, 0);  // never used
+      Ops::fillBytes(inverse_, 0xff);  // level NO_LEVEL
+      resident_ = 0;
+    } else {
+      ops_.resetSlabs(view(), u.slabs, timeline_);
+    }
+    size_t rays = static_cast<size_t>(frame.pixelCount());
+    if (requests_.size() < rays) requests_ = Buffer<BrickKey>(rays);
+    refill();
+    refills_ = 0;
+  }
+
+  // Mid-frame refill (paper 3.3.4) from the slots not used in this frame, least recently used
+  // first; returns the slots obtained.
+  uint32_t refill() {
+    uint32_t counts[2];
+    freeSlots_ = ops_.sortLru(timestamps_.data(), poolBricks_, frame_, counts, timeline_);
+    freeCount_ = freeListLength(poolBricks_, counts[0], counts[1]);
+    ops_.zero(counters_.data() + COUNTER_FREE_NEXT, 1);
+    ops_.unmapSlots(view(), freeSlots_, freeCount_, timeline_);
+    ++refills_;
+    return freeCount_;
+  }
+
+  CacheView view() {
+    CacheView v{};
+    v.clipmap = clipmap_;
+    v.entries = entries_.data();
+    v.timestamps = timestamps_.data();
+    v.inverse = inverse_.data();
+    v.freeSlots = freeSlots_;
+    v.freeCount = freeCount_;
+    v.requests = requests_.data();
+    v.requestCapacity = static_cast<uint32_t>(requests_.size());
+    v.counters = counters_.data();
+    v.frame = frame_;
+    v.degraded = degraded_ ? 1u : 0u;
+    return v;
+  }
+  BrickPool pool() { return BrickPool{texels_.data()}; }
+
+  // The counters (CacheCounter) as they are now (on the GPU: synchronises).
+  void readCounters(uint32_t* out) const { ops_.read(counters_.data(), out, COUNTER_COUNT); }
+  void clearRequests() { ops_.zero(counters_.data() + COUNTER_REQUESTS, 1); }
+  const BrickKey* requests() const { return requests_.data(); }
+  void setDegraded(bool d) { degraded_ = d; }
+  bool degraded() const { return degraded_; }
+
+  // The frame's statistics; the resident count follows from the counters.
+  CacheStats frameStats() {
+    uint32_t c[COUNTER_COUNT];
+    readCounters(c);
+    resident_ = resident_ + c[COUNTER_PRODUCED] - c[COUNTER_EVICTED];
+    return cacheStatsFrom(c, resident_, refills_);
+  }
+
+  MemoryReport memory() const {
+    return {{"brick_pool", bytesOf(texels_)},     {"indirection_table", bytesOf(entries_)},
+            {"inverse_table", bytesOf(inverse_)}, {"timestamps", bytesOf(timestamps_)},
+            {Ops::LRU_NAME, ops_.lruBytes()},     {"request_queue", bytesOf(requests_)}};
+  }
+
+  // The raw tables, in the backend's memory (tests read the CPU ones).
+  uint32_t poolBricks() const { return poolBricks_; }
+  const Clipmap& clipmap() const { return clipmap_; }
+  const Buffer<uint32_t>& entries() const { return entries_; }
+  const Buffer<BrickKey>& inverse() const { return inverse_; }
+  const Buffer<uint32_t>& timestamps() const { return timestamps_; }
+  const Buffer<Rgba8>& texels() const { return texels_; }
+
+ private:
+  template <class T>
+  static size_t bytesOf(const Buffer<T>& b) {
+    return b.size() * sizeof(T);
+  }
+
+  uint32_t poolBricks_;
+  ClipmapTracker tracker_;
+  Clipmap clipmap_{};
+  Buffer<uint32_t> entries_, timestamps_, counters_;
+  Buffer<BrickKey> inverse_, requests_;
+  Buffer<Rgba8> texels_;
+  Ops ops_;
+  TimelineView timeline_{};  // the frame's (beginFrame)
+  const uint32_t* freeSlots_ = nullptr;
+  uint32_t freeCount_ = 0, frame_ = 0, refills_ = 0;
+  uint64_t resident_ = 0;
+  bool degraded_ = false;
+};
+
+}  // namespace gvdp
