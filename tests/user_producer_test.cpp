@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#if GVDP_HAS_CUDA && defined(__CUDACC__)
+#include <cuda_runtime.h>
+#endif
 
 #include "../examples/custom_producer/gyroid.h"
 #include "gvdp/base/error.h"
@@ -151,6 +154,42 @@ TEST(UserProducer, GpuSchedulersRenderTheSameGyroid) {
     std::printf("[ measure ] gyroid frame %zu sp cuda vs cpu (96x64): PSNR %.2f dB\n", f, db);
     EXPECT_GE(db, 40.0) << "frame " << f;
   }
+}
+
+// Frames rendered to device memory on the caller's stream equal the host images (every CUDA
+// scheduler this translation unit has).
+TEST(UserProducer, GpuFramesToDeviceMemoryOnAStreamEqualHostFrames) {
+  GVDP_REQUIRE_GPU();
+#if GVDP_HAS_CUDA && defined(__CUDACC__)
+  for (SchedulerKind kind :
+       {SchedulerKind::Direct, SchedulerKind::Sp, SchedulerKind::Pt, SchedulerKind::Graph}) {
+    Frames host = renderFrames(GYROID, Backend::Cuda, kind, 3);
+    RendererOptions o;
+    o.scheduler = {Backend::Cuda, kind};
+    o.width = 96;
+    o.height = 64;
+    std::unique_ptr<Renderer> r = makeRenderer(GYROID, o);
+    size_t pixels = static_cast<size_t>(o.width) * o.height;
+    uint32_t* device = nullptr;
+    cudaStream_t stream = nullptr;
+    ASSERT_EQ(cudaMalloc(&device, pixels * sizeof(uint32_t)), cudaSuccess);
+    ASSERT_EQ(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), cudaSuccess);
+    for (int f = 0; f < 3; ++f) {
+      FrameStats stats = r->render(poseAt(f), device, stream);
+      EXPECT_EQ(stats.unfinishedPixels, 0);
+      std::vector<uint32_t> pixelsBack(pixels);
+      ASSERT_EQ(cudaMemcpyAsync(pixelsBack.data(), device, pixels * sizeof(uint32_t),
+                                cudaMemcpyDeviceToHost, stream),
+                cudaSuccess);
+      ASSERT_EQ(cudaStreamSynchronize(stream), cudaSuccess);
+      EXPECT_EQ(pixelsBack, host.images[f].pixels) << schedulerName(kind) << " frame " << f;
+    }
+    cudaStreamDestroy(stream);
+    cudaFree(device);
+  }
+#else
+  GTEST_SKIP() << "this test's translation unit was not compiled by nvcc";
+#endif
 }
 
 }  // namespace gvdp
