@@ -31,6 +31,11 @@ struct RendererOptions {
 // Throws InputError naming the first bad value.
 void validate(const RendererOptions& options);
 
+// The frame a renderer with these options renders of `pose` as frame number `frameIndex`, for a
+// world of finest voxel size `voxelSize0` (for code that drives a Scheduler itself).
+FrameSetup frameOf(const RendererOptions& options, float voxelSize0, const CameraPose& pose,
+                   int frameIndex);
+
 class Renderer {
  public:
   // Use makeRenderer. Throws InputError for bad options or an unavailable backend.

@@ -40,9 +40,13 @@ Renderer::Renderer(const RendererOptions& options, ProducerKernelsPtr producer)
 
 Renderer::~Renderer() = default;
 
+FrameSetup frameOf(const RendererOptions& o, float voxelSize0, const CameraPose& pose,
+                   int frameIndex) {
+  return makeFrame(pose, voxelSize0, o.width, o.height, o.levels, frameIndex, o.fovDegrees);
+}
+
 FrameSetup Renderer::frameAt(const CameraPose& pose) const {
-  return makeFrame(pose, voxelSize0_, options_.width, options_.height, options_.levels, frames_,
-                   options_.fovDegrees);
+  return frameOf(options_, voxelSize0_, pose, frames_);
 }
 
 FrameStats Renderer::render(const CameraPose& pose, Image& out) {

@@ -37,7 +37,7 @@ BenchOptions scaleOptions(const BenchOptions& o, const int size[2]) {
 
 BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
   SequenceOptions s = cellSequence(o, scene, m, k);  // checked by validate(BenchOptions)
-  std::unique_ptr<Renderer> renderer = makeRenderer(scene, rendererOptions(s));
+  std::unique_ptr<Renderer> renderer = makeRenderer(scene, s);
   Image image;
   BenchCell c{};
   c.scene = scene;

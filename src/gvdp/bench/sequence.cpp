@@ -9,7 +9,7 @@ namespace gvdp {
 
 void validate(const SequenceOptions& o) {
   findScene(o.scene);
-  validate(rendererOptions(o));
+  validate(static_cast<const RendererOptions&>(o));
   GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 1000000, "bad --frames ", o.frames,
                    " (expected 1..1000000)");
   const double LIMIT = 1e8;  // int32 brick coordinates at level 0 hold about 2.7e8 units
@@ -49,10 +49,6 @@ void checkResources(const SequenceOptions& o, const std::string& what) {
                    cuda ? " of device memory free" : " of memory available");
 }
 
-RendererOptions rendererOptions(const SequenceOptions& o) {
-  return {o.scheduler, o.width, o.height, o.levels, o.fovDegrees};
-}
-
 CameraPose poseOf(const SequenceOptions& o, int frame) {
   const SceneInfo& scene = findScene(o.scene);
   CameraPose start = scene.start;
@@ -61,15 +57,14 @@ CameraPose poseOf(const SequenceOptions& o, int frame) {
 }
 
 FrameSetup frameOf(const SequenceOptions& o, int frame) {
-  return makeFrame(poseOf(o, frame), findScene(o.scene).world.voxelSize0(), o.width, o.height,
-                   o.levels, frame, o.fovDegrees);
+  return frameOf(o, findScene(o.scene).world.voxelSize0(), poseOf(o, frame), frame);
 }
 
 MemoryReport renderSequence(const SequenceOptions& o,
                             const std::function<void(const Image&, const FrameStats&)>& onFrame) {
   validate(o);
   checkResources(o);
-  std::unique_ptr<Renderer> renderer = makeRenderer(o.scene, rendererOptions(o));
+  std::unique_ptr<Renderer> renderer = makeRenderer(o.scene, o);
   Image image;
   for (int f = 0; f < o.frames; ++f) {
     FrameStats stats = renderer->render(poseOf(o, f), image);

@@ -12,15 +12,12 @@
 
 namespace gvdp {
 
-struct SequenceOptions {
+// A renderer's options (scheduler, size, levels, field of view) and the sequence's own.
+struct SequenceOptions : RendererOptions {
   std::string scene = "perlin";
   Movement movement = Movement::Walkthrough;
   int frames = 8;
-  int width = 160, height = 100;
-  int levels = DEFAULT_LEVELS;
-  float fovDegrees = DEFAULT_FOV_DEGREES;
   Vec3d origin{0, 0, 0};  // added to the scene's start position
-  SchedulerOptions scheduler;
 };
 
 // Throws InputError naming the first bad value.
@@ -31,7 +28,6 @@ void validate(const SequenceOptions& options);
 // configuration in the message, e.g. "--pool-mb 190000" (default: scheduler, size and pool).
 void checkResources(const SequenceOptions& options, const std::string& what = "");
 
-RendererOptions rendererOptions(const SequenceOptions& options);
 CameraPose poseOf(const SequenceOptions& options, int frame);
 // The frame a renderer makes of poseOf(options, frame) as its frame number `frame`.
 FrameSetup frameOf(const SequenceOptions& options, int frame);
