@@ -2,7 +2,8 @@
 """Fails when an include runs up the layers of docs/DESIGN.md ("Layers").
 
 A file in src/gvdp/<layer>/ may include gvdp/<other>/ only when <other> is the same layer or one
-below it; the public headers (include/gvdp/*.h, included as "gvdp/<name>.h") are the api layer;
+below it; the public headers (include/gvdp/*.h, included as "gvdp/<name>.h") are the api layer, but
+gvdp/io.h (image files) is io;
 src/apps, tests and examples may include anything. Prints every offending include as file:line."""
 import pathlib
 import re
@@ -15,7 +16,8 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"gvdp/(?:([a-z_]+)/|[a-z_]+\.h")')
 repo = pathlib.Path(__file__).resolve().parent.parent
 root = repo / "src" / "gvdp"
 files = [(p, p.relative_to(root).parts[0]) for p in sorted(root.rglob("*"))]
-files += [(p, "api") for p in sorted((repo / "include" / "gvdp").glob("*"))]
+PUBLIC_LAYER = {"io.h": "io"}  # public headers above api
+files += [(p, PUBLIC_LAYER.get(p.name, "api")) for p in sorted((repo / "include" / "gvdp").glob("*"))]
 bad = 0
 for path, layer in files:
     if path.suffix not in {".h", ".cpp", ".cu", ".cuh"}:
@@ -28,7 +30,7 @@ for path, layer in files:
         m = INCLUDE.match(line)
         if not m:
             continue
-        other = m.group(1) or "api"
+        other = m.group(1) or PUBLIC_LAYER.get(line.split('"')[1][5:], "api")
         if other not in LAYERS or LAYERS.index(other) > LAYERS.index(layer):
             print(f"{path}:{number}: {layer} includes {other} ({line.strip()})")
             bad += 1

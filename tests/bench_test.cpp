@@ -8,7 +8,7 @@
 #include "gvdp/bench/frame_stats.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 TEST(FrameStats, OnePercentLowAndPercentilesOnSyntheticTimes) {
   // 200 frames: 198 at 10 ms, two at 50 ms. 1% of 200 = the 2 slowest.
@@ -83,4 +83,4 @@ TEST(Bench, CommandWritesItsOutputsAndRejectsBadLists) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

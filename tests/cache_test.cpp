@@ -10,7 +10,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/world/registry.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 
@@ -151,4 +151,4 @@ TEST(Cache, BrickBordersAreSeamless) {
   EXPECT_GT(tested, 50) << "no pair of resident neighbours found";
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

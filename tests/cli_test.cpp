@@ -10,7 +10,7 @@
 #include "gvdp/sched/graph/graph.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 void expectInputError(const std::string& args, const std::string& mentions) {
@@ -262,4 +262,4 @@ TEST(Cli, GraphLoopEnvironmentIsCheckedByName) {
   if (before) setenv("GVDP_GRAPH_LOOP", saved.c_str(), 1);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

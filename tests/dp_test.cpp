@@ -4,7 +4,7 @@
 #include "gvdp/sched/dp/dp_body.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 using test::renderRun;
 using test::Renders;
@@ -120,4 +120,4 @@ TEST_P(GpuDpTest, TinyLaunchBufferRefusesLaunchesButMatchesSp) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuDpTest, ::testing::Range(0, SCENE_COUNT));
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

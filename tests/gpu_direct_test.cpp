@@ -4,7 +4,7 @@
 #include "gvdp/bench/sequence.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class GpuDirectTest : public ::testing::TestWithParam<int> {};
 
@@ -30,4 +30,4 @@ TEST_P(GpuDirectTest, MatchesTheCpuRender) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuDirectTest, ::testing::Range(0, SCENE_COUNT));
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include "gvdp/io/png.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 TEST(Image, PngRoundTripIsExact) {
   Image a(37, 21);
@@ -34,4 +34,4 @@ TEST(Image, UnreadableOrUnwritableFilesAreInputErrors) {
   EXPECT_THROW(writePng(Image(4, 4), "/nonexistent/dir/x.png"), InputError);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

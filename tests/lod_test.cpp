@@ -5,7 +5,7 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/render/march.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 TEST(Lod, LevelVoxelIsNeverSmallerThanTheConeFootprint) {
   Lod lod{1.0f / 16.0f, 2.0f * std::tan(0.5236f) / 1500.0f, 8};
@@ -82,4 +82,4 @@ TEST(Frame, PrimaryRaysSpanTheFieldOfView) {
   EXPECT_DOUBLE_EQ(f.localOrigin.x + f.eye.x, 1e6);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

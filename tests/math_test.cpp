@@ -5,7 +5,7 @@
 #include "gvdp/base/camera.h"
 #include "gvdp/base/ray.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 TEST(Math, FloorDivAndModMatchMathematicalDefinitions) {
   for (int a = -40; a <= 40; ++a)
@@ -52,4 +52,4 @@ TEST(Camera, BasisIsOrthonormalRightHandedAndUpright) {
   EXPECT_FLOAT_EQ(b.right.x, -1.0f);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -10,7 +10,7 @@
 #include "gvdp/sched/memory_estimate.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 TEST(MemoryEstimate, MatchesWhatTheCpuSchedulersHold) {
   SequenceOptions o;
@@ -48,4 +48,4 @@ TEST(MemoryEstimate, RenderSequenceRefusesAPoolLargerThanTheHost) {
   EXPECT_FALSE(rendered);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -5,7 +5,7 @@
 
 #include "gvdp/base/parallel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Every index runs exactly once, across back-to-back runs with different chunk sizes: a worker
 // that wakes late for one run must not pair its chunk size with the next run's counter.
@@ -23,4 +23,4 @@ TEST(ThreadPool, EveryIndexRunsExactlyOnceAcrossBackToBackRuns) {
   }
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -5,7 +5,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/bench/paths.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 const CameraPose START{{10.0, 5.0, -3.0}, 0.4f, -0.1f};
@@ -65,4 +65,4 @@ TEST(Paths, RejectsUnknownMovement) {
   EXPECT_THROW(parseMovement("moonwalk"), InputError);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/sched/pt/pt_body.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 using test::renderRun;
 using test::Renders;
@@ -151,4 +151,4 @@ TEST(GpuGraphTest, HostDrivenLoopMatchesSpBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuPtTest, ::testing::Range(0, SCENE_COUNT));
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include "gvdp/render/shade.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 Image renderOne(const std::string& scene, int w, int h, Vec3d origin = {0, 0, 0}, int frame = 0) {
@@ -73,4 +73,4 @@ TEST(Render, ReferenceFrameIsThePinnedPicture) {
   EXPECT_EQ(h, 0x4d286d803bb85650ull);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -3,7 +3,7 @@
 #include "gvdp/bench/sequence.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 using test::Renders;
 
@@ -111,4 +111,4 @@ TEST_P(GpuSpTest, TinyPoolFinishesEveryPixel) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuSpTest, ::testing::Range(0, SCENE_COUNT));
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

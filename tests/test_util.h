@@ -11,7 +11,7 @@
 #include "gvdp/bench/sequence.h"
 #include "gvdp/sched/builtin_producer.h"
 
-namespace gvdp::test {
+namespace gvdp::detail::test {
 
 struct CommandResult {
   int status;
@@ -72,9 +72,9 @@ inline std::string sceneName(int i) {
   return std::string(allScenes()[i].name);
 }
 
-}  // namespace gvdp::test
+}  // namespace gvdp::detail::test
 
 #define GVDP_REQUIRE_GPU()                                                           \
   do {                                                                               \
-    if (!::gvdp::cudaDeviceAvailable()) GTEST_SKIP() << ::gvdp::cudaDeviceSummary(); \
+    if (!::gvdp::detail::cudaDeviceAvailable()) GTEST_SKIP() << ::gvdp::detail::cudaDeviceSummary(); \
   } while (0)

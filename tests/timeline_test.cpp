@@ -9,7 +9,7 @@
 #include "gvdp/profile/timeline_cpu.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 TimelineRecord rec(uint64_t a, uint64_t b, int lane, TaskKind k) {
@@ -126,4 +126,4 @@ TEST(Timeline, GpuRecordsAreWellFormedForSpAndDp) {
   }
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

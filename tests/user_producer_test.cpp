@@ -14,7 +14,7 @@
 #include "gvdp/world/scene.h"
 #include "test_util.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 constexpr Gyroid GYROID{4.0f, 2.0f, 0.3f, 0.005f};
@@ -192,4 +192,4 @@ TEST(UserProducer, GpuFramesToDeviceMemoryOnAStreamEqualHostFrames) {
 #endif
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include "gvdp/world/noise.h"
 #include "gvdp/world/registry.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 TEST(Noise, StaysWithinTheBoundsProducersRelyOn) {
   std::mt19937_64 rng(1);
@@ -161,4 +161,4 @@ TEST(Registry, FindsScenesByNameAndRejectsUnknownOnes) {
   }
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

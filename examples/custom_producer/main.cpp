@@ -5,8 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "gvdp/base/error.h"
-#include "gvdp/io/png.h"
+#include "gvdp/io.h"
 #include "gvdp/make_renderer.h"
 #include "gyroid.h"
 

@@ -14,7 +14,7 @@ namespace gvdp {
 
 template <Producer P>
 std::unique_ptr<Renderer> makeRenderer(const P& producer, const RendererOptions& options) {
-  return std::make_unique<Renderer>(options, makeProducerKernels(producer));
+  return std::make_unique<Renderer>(options, detail::makeProducerKernels(producer));
 }
 
 }  // namespace gvdp

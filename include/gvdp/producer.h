@@ -7,3 +7,30 @@
 #include "gvdp/base/vecmath.h"
 #include "gvdp/world/producer.h"
 #include "gvdp/world/voxel.h"
+
+namespace gvdp {
+
+// What a producer is made of; operators on the vectors are found by argument-dependent lookup.
+using detail::bakeShading;
+using detail::clamp01;
+using detail::coverage;
+using detail::cross;
+using detail::dot;
+using detail::EMPTY_MARGIN_VOXELS;
+using detail::length;
+using detail::lerp;
+using detail::makeVoxel;
+using detail::normalize;
+using detail::packRgba8;
+using detail::PI;
+using detail::Producer;
+using detail::Rgba8;
+using detail::smoothstep;
+using detail::toDouble;
+using detail::toFloat;
+using detail::Vec3d;
+using detail::Vec3f;
+using detail::Vec3i;
+using detail::VoxelSample;
+
+}  // namespace gvdp

@@ -14,12 +14,32 @@
 #include <string_view>
 
 #include "gvdp/base/camera.h"
+#include "gvdp/base/error.h"  // Error, InputError
 #include "gvdp/base/image.h"
 #include "gvdp/sched/scheduler.h"
 
 struct CUstream_st;  // cudaStream_t is CUstream_st*
 
 namespace gvdp {
+
+// The vocabulary of the API; everything else of the library is in gvdp::detail.
+using detail::Backend;
+using detail::backendName;
+using detail::CacheStats;
+using detail::CameraPose;
+using detail::DEFAULT_FOV_DEGREES;
+using detail::DEFAULT_LEVELS;
+using detail::FrameSetup;
+using detail::FrameStats;
+using detail::Image;
+using detail::MemoryReport;
+using detail::parseBackend;
+using detail::parseScheduler;
+using detail::ProducerKernelsPtr;
+using detail::psnr;
+using detail::SchedulerKind;
+using detail::schedulerName;
+using detail::SchedulerOptions;
 
 struct RendererOptions {
   SchedulerOptions scheduler;  // backend, scheduler, pool size, dp's pending launches, timeline
@@ -62,7 +82,7 @@ class Renderer {
 
   RendererOptions options_;
   float voxelSize0_;
-  std::unique_ptr<Scheduler> scheduler_;
+  std::unique_ptr<detail::Scheduler> scheduler_;
   int frames_ = 0;
 };
 

@@ -21,7 +21,7 @@
 #include "gvdp/io/timeline_export.h"
 #include "gvdp/sched/memory_estimate.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 Vec3d parseVector(const std::string& text, const char* flag) {
@@ -485,11 +485,11 @@ int run(int argc, char** argv) {
 }
 
 }  // namespace
-}  // namespace gvdp
+}  // namespace gvdp::detail
 
 int main(int argc, char** argv) {
   try {
-    return gvdp::run(argc, argv);
+    return gvdp::detail::run(argc, argv);
   } catch (const gvdp::InputError& e) {
     std::fprintf(stderr, "gvdp: error: %s\n", e.what());
     return 2;

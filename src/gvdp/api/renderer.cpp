@@ -8,6 +8,8 @@
 
 namespace gvdp {
 
+using namespace detail;
+
 void validate(const RendererOptions& o) {
   GVDP_INPUT_CHECK(o.width >= 8 && o.width <= 16384, "bad --width ", o.width,
                    " (expected 8..16384)");

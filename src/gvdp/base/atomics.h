@@ -14,7 +14,7 @@
 #include <thread>
 #endif
 
-namespace gvdp {
+namespace gvdp::detail {
 
 GVDP_HD GVDP_INLINE uint32_t atomicCas32(uint32_t* p, uint32_t expected, uint32_t desired) {
 #if GVDP_IS_GPU_CODE
@@ -113,4 +113,4 @@ GVDP_HD GVDP_INLINE void fenceSeqCst() {
 #endif
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

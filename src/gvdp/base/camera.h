@@ -4,7 +4,7 @@
 
 #include "gvdp/base/vecmath.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct CameraPose {
   Vec3d position;
@@ -26,4 +26,4 @@ inline CameraBasis cameraBasis(const CameraPose& pose) {
   return b;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 
 #include "gvdp/base/defs.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // One thread does the whole work (a CPU task, or a lone GPU thread).
 struct ThreadScope {
@@ -47,4 +47,4 @@ struct BlockScope {
 };
 #endif
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

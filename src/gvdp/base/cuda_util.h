@@ -18,7 +18,7 @@
           __FILE__, ":", __LINE__, ": " #call " failed: ", cudaGetErrorString(gvdpErr_))); \
   } while (0)
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class T>
 class DeviceBuffer {
@@ -95,4 +95,4 @@ int residentBlocks(Kernel kernel, int threads) {
   return sms * (perSm > 0 ? perSm : 1);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -23,7 +23,7 @@
 #define GVDP_UNROLL
 #endif
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Paper 3.2: bricks of 8^3 voxels, stored with a one-voxel border (10^3 samples) so that
 // trilinear filtering is seamless across brick edges.
@@ -33,4 +33,4 @@ constexpr int BRICK_SAMPLE_COUNT = BRICK_SAMPLES * BRICK_SAMPLES * BRICK_SAMPLES
 constexpr int MAX_LEVELS = 16;
 constexpr int DEFAULT_LEVELS = 8;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 
 #include <sstream>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 #if GVDP_HAS_CUDA
 bool cudaBuilt() {
@@ -64,4 +64,4 @@ void copyDeviceAsync(void*, const void*, size_t, void*) {
 }
 #endif
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

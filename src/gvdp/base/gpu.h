@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 bool cudaBuilt();
 bool cudaDeviceAvailable();
@@ -18,4 +18,4 @@ std::optional<uint64_t> cudaFreeMemoryBytes();
 // Enqueues a device-to-device copy on `stream` (a cudaStream_t); throws in builds without CUDA.
 void copyDeviceAsync(void* dst, const void* src, size_t bytes, void* stream);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

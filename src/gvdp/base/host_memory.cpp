@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 // MemAvailable from /proc/meminfo (free memory plus what the kernel can reclaim without swapping).
@@ -55,4 +55,4 @@ std::optional<uint64_t> hostAvailableMemoryBytes() {
   return host ? host : room;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <optional>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Bytes the host can still give this process; nullopt when it cannot be told.
 std::optional<uint64_t> hostAvailableMemoryBytes();
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

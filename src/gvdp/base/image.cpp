@@ -5,7 +5,7 @@
 
 #include "gvdp/base/error.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 double psnr(const Image& a, const Image& b) {
   GVDP_CHECK(a.width == b.width && a.height == b.height, "image sizes differ");
@@ -21,4 +21,4 @@ double psnr(const Image& a, const Image& b) {
   return 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct Image {
   int width = 0, height = 0;
@@ -19,4 +19,4 @@ struct Image {
 // Peak signal-to-noise ratio over the RGB channels, in dB (infinity when identical).
 double psnr(const Image& a, const Image& b);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 ThreadPool::ThreadPool(int threads) {
   for (int w = 1; w < std::max(threads, 1); ++w)
@@ -108,4 +108,4 @@ ThreadPool& ThreadPool::global() {
   return pool;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class ThreadPool {
  public:
@@ -66,4 +66,4 @@ void parallelFor(int64_t n, F&& fn, int64_t chunk = 64, uint8_t kind = 0) {
       kind);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -5,7 +5,7 @@
 
 #include "gvdp/base/vecmath.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct Ray {
   Vec3f o;  // relative to the frame's local origin
@@ -22,4 +22,4 @@ GVDP_HD GVDP_INLINE float boxExit(const Ray& r, Vec3f lo, Vec3f hi) {
   return fminf(tx, fminf(ty, tz));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

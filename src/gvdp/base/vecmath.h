@@ -6,7 +6,7 @@
 
 #include "gvdp/base/defs.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct Vec3f {
   float x, y, z;
@@ -123,4 +123,4 @@ GVDP_HD GVDP_INLINE float smoothstep(float e0, float e1, float x) {
 
 constexpr float PI = 3.14159265358979323846f;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

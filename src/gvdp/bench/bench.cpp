@@ -10,7 +10,7 @@
 #include "gvdp/base/gpu.h"
 #include "gvdp/bench/frame_stats.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 // --scale: dp's frame time at these sizes, on the first scene's walkthrough.
@@ -219,4 +219,4 @@ std::string benchMarkdown(const BenchResults& r) {
   return s.str();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

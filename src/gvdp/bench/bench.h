@@ -9,7 +9,7 @@
 
 #include "gvdp/bench/sequence.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct BenchOptions {
   std::vector<std::string> scenes;
@@ -56,4 +56,4 @@ std::string benchJson(const BenchResults& r);
 std::string benchCsv(const BenchResults& r);
 std::string benchMarkdown(const BenchResults& r);  // Table 1's shape
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include <numeric>
 #include <vector>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct FrameTimeStats {
   double avgFps = 0, low1Fps = 0, medianMs = 0, p99Ms = 0;
@@ -28,4 +28,4 @@ inline FrameTimeStats frameTimeStats(std::vector<double> ms) {
   return s;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

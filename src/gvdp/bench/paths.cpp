@@ -5,7 +5,7 @@
 
 #include "gvdp/base/error.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 constexpr std::array<std::string_view, MOVEMENT_COUNT> NAMES = {"walkthrough", "forward",
                                                                 "backward", "sideways", "spinning"};
@@ -66,4 +66,4 @@ CameraPose cameraAt(Movement m, const CameraPose& start, float speed, int frame)
   return pose;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

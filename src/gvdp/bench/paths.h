@@ -7,7 +7,7 @@
 
 #include "gvdp/base/camera.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 enum class Movement { Walkthrough, Forward, Backward, Sideways, Spinning };
 constexpr int MOVEMENT_COUNT = 5;
@@ -19,4 +19,4 @@ std::string movementNames();
 // Pose at `frame` for a path starting at `start`, moving `speed` world units per frame.
 CameraPose cameraAt(Movement m, const CameraPose& start, float speed, int frame);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

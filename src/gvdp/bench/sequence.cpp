@@ -5,7 +5,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/sched/memory_estimate.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 void validate(const SequenceOptions& o) {
   findScene(o.scene);
@@ -73,4 +73,4 @@ MemoryReport renderSequence(const SequenceOptions& o,
   return renderer->memory();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

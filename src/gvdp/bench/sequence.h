@@ -10,7 +10,7 @@
 #include "gvdp/renderer.h"
 #include "gvdp/world/registry.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // A renderer's options (scheduler, size, levels, field of view) and the sequence's own.
 struct SequenceOptions : RendererOptions {
@@ -37,4 +37,4 @@ FrameSetup frameOf(const SequenceOptions& options, int frame);
 MemoryReport renderSequence(const SequenceOptions& options,
                             const std::function<void(const Image&, const FrameStats&)>& onFrame);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -21,7 +21,7 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class Ops>
 class BrickCache {
@@ -144,4 +144,4 @@ class BrickCache {
   bool degraded_ = false;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 void HostCacheOps::fillBytes(void* p, size_t bytes, int byte) {
   std::memset(p, byte, bytes);
@@ -47,4 +47,4 @@ void HostCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_
       n, [&](int64_t i) { unmapSlot(v, slots[i]); }, 256, static_cast<uint8_t>(TaskKind::Cache));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 
 #include "gvdp/cache/brick_cache.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class HostCacheOps {
  public:
@@ -40,4 +40,4 @@ class HostCacheOps {
 
 using BrickCacheCpu = BrickCache<HostCacheOps>;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

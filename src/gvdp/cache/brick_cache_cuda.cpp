@@ -5,7 +5,7 @@
 
 #include "gvdp/cache/cache_kernels.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 CudaCacheOps::CudaCacheOps(uint32_t poolBricks)
     : keysIn_(poolBricks),
@@ -57,4 +57,4 @@ size_t CudaCacheOps::lruBytes() const {
          temp_.bytes();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/cache/brick_cache.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class CudaCacheOps {
  public:
@@ -39,4 +39,4 @@ class CudaCacheOps {
 
 using BrickCacheCuda = BrickCache<CudaCacheOps>;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

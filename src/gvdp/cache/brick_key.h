@@ -8,7 +8,7 @@
 
 #include "gvdp/base/vecmath.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr uint32_t ENTRY_MISSING = 0xffffffffu;
 constexpr uint32_t ENTRY_IN_PRODUCTION = 0xfffffffeu;
@@ -35,4 +35,4 @@ struct BrickKey {
 
 constexpr int NO_LEVEL = -1;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -10,7 +10,7 @@
 
 #include "gvdp/cache/slabs.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
@@ -76,4 +76,4 @@ class ClipmapTracker {
   std::optional<Clipmap> previous_;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

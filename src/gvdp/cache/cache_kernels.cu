@@ -4,7 +4,7 @@
 #include "gvdp/cache/cache_kernels.h"
 #include "gvdp/profile/parallel_for.cuh"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline) {
   parallelForCuda("cache: reset slabs", jobs.total(), timeline, TaskKind::Cache,
@@ -47,4 +47,4 @@ void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
                   [=] __device__(uint32_t i) { unmapSlot(cache, slots[i]); });
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

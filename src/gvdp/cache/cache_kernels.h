@@ -7,7 +7,7 @@
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline);
 // keys[i] = timestamps[i], values[i] = i.
@@ -22,4 +22,4 @@ void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, ui
 void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
                       const TimelineView& timeline);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

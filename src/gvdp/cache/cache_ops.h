@@ -6,7 +6,7 @@
 #include "gvdp/base/atomics.h"
 #include "gvdp/cache/cache_view.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // A slab of one level's window that the camera left: `count` planes along `axis`, starting at
 // global brick coordinate `first` (planes of W x W entries each).
@@ -90,4 +90,4 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, b
   }
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/cache/brick_key.h"
 #include "gvdp/cache/clipmap.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 enum CacheCounter : int {
   COUNTER_FREE_NEXT,  // next index into the free slot list (may run past freeCount)
@@ -36,4 +36,4 @@ struct CacheView {
   float voxelSize0;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -9,7 +9,7 @@
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/render/march.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Claims a MISSING brick for production: true for the one thread whose CAS won.
 GVDP_HD GVDP_INLINE bool claimBrick(uint32_t* entry) {
@@ -81,4 +81,4 @@ struct CachedAccess {
   }
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

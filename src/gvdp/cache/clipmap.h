@@ -7,7 +7,7 @@
 #include "gvdp/cache/brick_key.h"
 #include "gvdp/render/frame.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct Clipmap {
   int width;  // W, bricks per axis and level
@@ -53,4 +53,4 @@ inline Clipmap clipmapOf(const FrameSetup& frame) {
   return c;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -12,7 +12,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/world/producer.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 GVDP_HD GVDP_INLINE Vec3i brickSampleIndex(int sample) {
   return {sample % BRICK_SAMPLES, (sample / BRICK_SAMPLES) % BRICK_SAMPLES,
@@ -96,4 +96,4 @@ GVDP_HD GVDP_INLINE void produceBrick(const Scope& group, const P& producer, con
   commitBrick<PER>(group, cache, pool, key, empty, [&](int k, int) { return values[k]; });
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 
 #include "gvdp/cache/cache_ops.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Slabs to reset when the windows move from `before` to `now` (same width and levels). A move of
 // W or more along an axis resets the whole level (as one slab of W planes).
@@ -31,4 +31,4 @@ inline SlabJobs slabJobs(const Clipmap& before, const Clipmap& now) {
   return jobs;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 
 #include "gvdp/base/error.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace fs = std::filesystem;
 
 namespace {
@@ -67,4 +67,4 @@ void OutputPaths::file(const std::string& path) {
   if (!existed) ::unlink(path.c_str());
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

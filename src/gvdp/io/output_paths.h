@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class OutputPaths {
  public:
@@ -28,4 +28,4 @@ class OutputPaths {
   std::vector<std::filesystem::path> created_;  // outermost first
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

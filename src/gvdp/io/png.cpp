@@ -10,7 +10,7 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 void writePng(const Image& image, const std::string& path) {
   GVDP_CHECK(image.width > 0 && image.height > 0, "empty image");
@@ -29,4 +29,4 @@ Image readPng(const std::string& path) {
   return image;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

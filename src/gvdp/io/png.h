@@ -5,9 +5,9 @@
 
 #include "gvdp/base/image.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 void writePng(const Image& image, const std::string& path);  // throws InputError if unwritable
 Image readPng(const std::string& path);                      // throws InputError
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -6,7 +6,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& frames,
                       const MemoryReport& memory) {
@@ -55,4 +55,4 @@ void writeStatsJson(const std::string& path, const SequenceOptions& o,
   GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 
 #include "gvdp/bench/sequence.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::string statsJson(const SequenceOptions& options, const std::vector<FrameStats>& frames,
                       const MemoryReport& memory);
@@ -16,4 +16,4 @@ void writeStatsJson(const std::string& path, const SequenceOptions& options,
                     const std::vector<FrameStats>& frames,
                     const MemoryReport& memory);  // throws InputError if unwritable
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

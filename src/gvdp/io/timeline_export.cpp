@@ -7,7 +7,7 @@
 #define STB_EASY_FONT_IMPLEMENTATION
 #include <stb/stb_easy_font.h>
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 struct Interval {
@@ -226,4 +226,4 @@ std::string chromeTraceJson(const std::vector<TimelineRecord>& records, int lane
   return nlohmann::json{{"traceEvents", events}, {"displayTimeUnit", "ms"}}.dump();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -10,7 +10,7 @@
 #include "gvdp/io/png.h"
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct TimelineStats {
   double spanMs = 0;                       // first start to last end
@@ -28,4 +28,4 @@ Image timelineImage(const std::vector<TimelineRecord>& records, int lanes,
                     const std::string& title);
 std::string chromeTraceJson(const std::vector<TimelineRecord>& records, int lanes);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

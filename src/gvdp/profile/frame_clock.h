@@ -5,7 +5,7 @@
 #include <chrono>
 #include <memory>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class FrameClock {
  public:
@@ -28,4 +28,4 @@ class CpuFrameClock final : public FrameClock {
 
 std::unique_ptr<FrameClock> makeGpuFrameClock();  // CUDA builds only
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

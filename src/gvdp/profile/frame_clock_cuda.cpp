@@ -1,7 +1,7 @@
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/frame_clock.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class GpuFrameClock final : public FrameClock {
@@ -22,4 +22,4 @@ std::unique_ptr<FrameClock> makeGpuFrameClock() {
   return std::make_unique<GpuFrameClock>();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct TimelineCapture {
   std::vector<TimelineRecord> records;
@@ -28,4 +28,4 @@ constexpr uint32_t TIMELINE_CAPACITY = 1u << 22;  // records per frame (about 10
 std::unique_ptr<FrameTimeline> makeCpuFrameTimeline();
 std::unique_ptr<FrameTimeline> makeGpuFrameTimeline();  // CUDA builds only
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

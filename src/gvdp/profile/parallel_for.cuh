@@ -9,7 +9,7 @@
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline_device.cuh"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class Fn>
 __global__ void parallelForKernel(uint32_t n, TimelineView timeline, TaskKind kind, Fn fn) {
@@ -29,4 +29,4 @@ void parallelForCuda(const char* name, uint32_t n, const TimelineView& timeline,
   parallelForKernel<<<blocks, BLOCK>>>(n, timeline, kind, fn);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

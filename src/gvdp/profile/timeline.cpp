@@ -4,7 +4,7 @@
 #include "gvdp/profile/frame_timeline.h"
 #include "gvdp/profile/timeline_cpu.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 const char* taskKindName(TaskKind k) {
   static const char* const NAMES[TASK_KIND_COUNT] = {"render", "production", "resolve", "cache",
@@ -27,9 +27,9 @@ void recordThreadPoolInto(CpuTimeline* timeline) {
   setTaskObserver(timeline ? observe : nullptr);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class CpuFrameTimeline final : public FrameTimeline {
@@ -58,4 +58,4 @@ std::unique_ptr<FrameTimeline> makeCpuFrameTimeline() {
   return std::make_unique<CpuFrameTimeline>();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -9,7 +9,7 @@
 #include "gvdp/base/atomics.h"
 #include "gvdp/base/defs.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 enum class TaskKind : uint8_t { Render, Produce, Resolve, Cache, Sweep };
 constexpr int TASK_KIND_COUNT = 5;
@@ -33,4 +33,4 @@ struct TimelineView {
   }
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

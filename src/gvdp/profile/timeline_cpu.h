@@ -7,7 +7,7 @@
 
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class CpuTimeline {
  public:
@@ -29,4 +29,4 @@ class CpuTimeline {
 // Makes the thread pool record into `timeline` (nullptr: stop).
 void recordThreadPoolInto(CpuTimeline* timeline);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -1,7 +1,7 @@
 #include "gvdp/profile/timeline_cuda.h"
 #include "gvdp/profile/frame_timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class GpuFrameTimeline final : public FrameTimeline {
@@ -30,4 +30,4 @@ std::unique_ptr<FrameTimeline> makeGpuFrameTimeline() {
   return std::make_unique<GpuFrameTimeline>();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

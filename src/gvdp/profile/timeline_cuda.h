@@ -6,7 +6,7 @@
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class GpuTimeline {
  public:
@@ -34,4 +34,4 @@ class GpuTimeline {
   DeviceBuffer<uint32_t> count_;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 
 #include "gvdp/profile/timeline.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 __device__ inline uint64_t globalTimer() {
   uint64_t t;
@@ -61,4 +61,4 @@ class BlockTimer {
   Span* span_ = nullptr;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -10,7 +10,7 @@
 
 #include "gvdp/render/trilinear.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct BrickPool {
   Rgba8* texels;  // slot * BRICK_SAMPLE_COUNT + (z * 10 + y) * 10 + x
@@ -38,4 +38,4 @@ struct BrickPool {
   }
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -10,7 +10,7 @@
 #include "gvdp/render/shade.h"
 #include "gvdp/world/producer.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class P>
 struct DirectAccess {
@@ -41,4 +41,4 @@ GVDP_HD GVDP_INLINE Rgba8 renderDirectPixel(const FrameSetup& frame, const P& pr
   return resolvePixel(state.colour, ray.d);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

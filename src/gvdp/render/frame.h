@@ -8,7 +8,7 @@
 #include "gvdp/profile/timeline.h"
 #include "gvdp/render/lod.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct FrameSetup {
   Vec3d localOrigin;  // world position of local (0, 0, 0)
@@ -49,4 +49,4 @@ inline FrameSetup makeFrame(const CameraPose& pose, float voxelSize0, int width,
   return f;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

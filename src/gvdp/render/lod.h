@@ -9,7 +9,7 @@
 #include "gvdp/base/defs.h"
 #include "gvdp/base/vecmath.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct Lod {
   float voxelSize0;  // v0
@@ -48,4 +48,4 @@ inline int clipmapWidthFor(float pixelAngle) {
   return 2 * halfBricks + 2;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

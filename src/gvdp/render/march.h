@@ -9,7 +9,7 @@
 #include "gvdp/render/lod.h"
 #include "gvdp/render/trilinear.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr float OPAQUE_ALPHA = 0.99f;
 
@@ -98,4 +98,4 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
   return MarchResult::Finished;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

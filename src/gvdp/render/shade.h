@@ -4,7 +4,7 @@
 #include "gvdp/base/vecmath.h"
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 GVDP_HD GVDP_INLINE Vec3f skyColour(Vec3f d) {
   if (d.y < 0.0f)
@@ -25,4 +25,4 @@ GVDP_HD GVDP_INLINE Rgba8 resolvePixel(Vec4f colour, Vec3f direction) {
   return packRgba8({linearToSrgb(c.x), linearToSrgb(c.y), linearToSrgb(c.z)}, 1.0f);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -6,7 +6,7 @@
 #include "gvdp/base/vecmath.h"
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 GVDP_HD GVDP_INLINE Vec4f lerp4(Vec4f a, Vec4f b, float t) {
   return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t,
@@ -31,4 +31,4 @@ GVDP_HD GVDP_INLINE Vec4f trilinear(Vec3f v, Fetch&& fetch) {
   return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Call from every thread of the block, before any thread returns (it synchronises); the copy
 // lives as long as the block. One copy per type and kernel.
@@ -25,4 +25,4 @@ __device__ inline const T& blockCopy(const T* global) {
   return *reinterpret_cast<const T*>(words);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

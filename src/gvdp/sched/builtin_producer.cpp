@@ -2,10 +2,10 @@
 
 #include "gvdp/sched/producer_kernels_of.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 ProducerKernelsPtr builtinProducerKernels(const BuiltinScene& scene) {
   return makeProducerKernels(scene);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -5,8 +5,8 @@
 #include "gvdp/sched/producer_kernels.h"
 #include "gvdp/world/scene.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 ProducerKernelsPtr builtinProducerKernels(const BuiltinScene& scene);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

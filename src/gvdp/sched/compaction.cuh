@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Every lane of the warp must call it.
 __device__ inline void appendStopped(bool stopped, uint32_t pixel, uint32_t* next,
@@ -18,4 +18,4 @@ __device__ inline void appendStopped(bool stopped, uint32_t pixel, uint32_t* nex
   if (stopped) next[base + __popc(mask & ((1u << lane) - 1u))] = pixel;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/sched/dp/dp.h"
 #include "gvdp/sched/pt/pt_body.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 // pt's worker warps on CUDA (pt_cuda.cpp: blocks x 8): about 4096 on a large GPU.
@@ -103,4 +103,4 @@ std::optional<uint64_t> backendMemoryBytes(Backend backend) {
   return backend == Backend::Cuda ? cudaFreeMemoryBytes() : hostAvailableMemoryBytes();
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -13,7 +13,7 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 MemoryReport memoryEstimate(const SchedulerOptions& options, const FrameSetup& frame);
 uint64_t memoryTotal(const MemoryReport& report);
@@ -22,4 +22,4 @@ uint64_t memoryTotal(const MemoryReport& report);
 // nullopt when it cannot be told.
 std::optional<uint64_t> backendMemoryBytes(Backend backend);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

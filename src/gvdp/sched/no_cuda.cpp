@@ -8,7 +8,7 @@
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/sp/sp.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::unique_ptr<Scheduler> makeDirectCuda(ProducerKernelsPtr) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
@@ -38,4 +38,4 @@ std::unique_ptr<FrameTimeline> makeGpuFrameTimeline() {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

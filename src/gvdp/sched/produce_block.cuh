@@ -5,7 +5,7 @@
 #include "gvdp/cache/produce.h"
 #include "gvdp/render/brick_pool.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr int PRODUCE_BLOCK = 512;
 
@@ -17,4 +17,4 @@ __device__ inline void produceBrickBlock(const P& producer, const CacheView& cac
   produceBrick<PER>(BlockScope{&word}, producer, cache, pool, key);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -14,7 +14,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/frame.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class CudaProducerKernels;  // producer_kernels_cuda.h (CUDA builds)
 
@@ -34,4 +34,4 @@ class ProducerKernels {
 
 using ProducerKernelsPtr = std::shared_ptr<const ProducerKernels>;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

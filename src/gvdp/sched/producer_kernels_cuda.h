@@ -10,7 +10,7 @@
 #include "gvdp/sched/producer_kernels.h"
 #include "gvdp/sched/pt/pt_body.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class CudaProducerKernels {
  public:
@@ -32,4 +32,4 @@ class CudaProducerKernels {
   virtual void launchDpFrame(const DpContext* deviceContext, const FrameSetup& frame) const = 0;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -32,7 +32,7 @@
 #define GVDP_PRODUCER_MODE producer_host
 #endif
 
-namespace gvdp {
+namespace gvdp::detail {
 inline namespace GVDP_PRODUCER_MODE {
 
 #if GVDP_PRODUCER_CUDA
@@ -92,7 +92,7 @@ class ProducerKernelsOf final : public ProducerKernels {
   }
   void produceBrick(const CacheView& cache, const BrickPool& pool,
                     const BrickKey& key) const override {
-    gvdp::produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, p_, cache, pool, key);
+    detail::produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, p_, cache, pool, key);
   }
   void renderDirect(const FrameSetup& frame, uint32_t* pixels) const override {
     parallelFor(
@@ -122,4 +122,4 @@ ProducerKernelsPtr makeProducerKernels(const P& producer) {
 }
 
 }  // namespace GVDP_PRODUCER_MODE
-}  // namespace gvdp
+}  // namespace gvdp::detail

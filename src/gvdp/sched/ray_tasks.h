@@ -9,7 +9,7 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/render/shade.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr int TILE = 8;
 
@@ -71,4 +71,4 @@ GVDP_HD GVDP_INLINE Rgba8 resolveRay(const FrameSetup& f, const RayState* payloa
   return resolvePixel(payload[pixel].colour, ray.d);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -11,7 +11,7 @@
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/sp/sp.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::string_view backendName(Backend b) {
   return b == Backend::Cpu ? "cpu" : "cuda";
@@ -126,4 +126,4 @@ std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
   return s;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

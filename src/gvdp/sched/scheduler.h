@@ -15,7 +15,7 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/sched/producer_kernels.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 enum class Backend { Cpu, Cuda };
 enum class SchedulerKind { Direct, Sp, Dp, Pt, Graph };
@@ -121,4 +121,4 @@ void requireBackend(Backend backend);
 std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

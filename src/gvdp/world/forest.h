@@ -11,7 +11,7 @@
 #include "gvdp/world/noise.h"
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr float TREE_CELL = 14.0f;
 constexpr float LEAF_CELL = 0.6f, LEAF_RADIUS = 0.16f, LEAF_THICKNESS = 0.01f;
@@ -162,4 +162,4 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
   return {packRgba8(premultiplied, alpha), empty};
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

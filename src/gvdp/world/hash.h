@@ -7,7 +7,7 @@
 
 #include "gvdp/base/vecmath.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 GVDP_HD GVDP_INLINE uint32_t hashU32(uint32_t h) {
   h ^= h >> 16;
@@ -51,4 +51,4 @@ GVDP_HD GVDP_INLINE float sinHash(float a, float b, float c, float k) {
   return s - floorf(s);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

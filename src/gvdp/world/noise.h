@@ -7,7 +7,7 @@
 #include "gvdp/base/vecmath.h"
 #include "gvdp/world/hash.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Bounds used by producers to stay conservative (tests/world_test.cpp checks them on random
 // points): |noise| <= NOISE_MAX_ABS and |grad noise| <= NOISE_LIPSCHITZ per lattice unit.
@@ -79,4 +79,4 @@ GVDP_HD GVDP_INLINE NoiseSample gradientNoise(Vec3d p, uint32_t seed) {
   return s;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

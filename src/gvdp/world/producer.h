@@ -18,7 +18,7 @@
 
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class P>
 concept Producer = std::is_trivially_copyable_v<P> &&
@@ -28,4 +28,4 @@ concept Producer = std::is_trivially_copyable_v<P> &&
   { p.voxelSize0() } -> std::convertible_to<float>;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

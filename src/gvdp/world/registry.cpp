@@ -4,7 +4,7 @@
 
 #include "gvdp/base/error.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 // Height of the first matter below `top` at (x, z), at the finest voxel size.
@@ -68,4 +68,4 @@ const SceneInfo& findScene(std::string_view name) {
   throw InputError("unknown scene '" + std::string(name) + "' (scenes: " + sceneNames() + ")");
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -9,7 +9,7 @@
 #include "gvdp/base/camera.h"
 #include "gvdp/world/scene.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct SceneInfo {
   std::string_view name;
@@ -24,4 +24,4 @@ std::span<const SceneInfo> allScenes();
 const SceneInfo& findScene(std::string_view name);
 std::string sceneNames();  // "perlin, fbm, ..."
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

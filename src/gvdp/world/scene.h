@@ -11,7 +11,7 @@
 #include "gvdp/world/spheres.h"
 #include "gvdp/world/terrain.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size.
 template <VoxelSample (*FN)(Vec3d, float, uint32_t)>
@@ -58,4 +58,4 @@ struct BuiltinScene {
 
 static_assert(Producer<BuiltinScene> && Producer<PerlinWorld>);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/world/hash.h"
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr float SPHERE_CELL = 6.0f;
 
@@ -105,4 +105,4 @@ GVDP_HD GVDP_INLINE VoxelSample produceAlignedSpheres(Vec3d p, float voxelSize, 
   return produceSphere(c, s, distanceToCellBorder(c.local) + (HALF - RADIUS), voxelSize);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -10,7 +10,7 @@
 #include "gvdp/world/noise.h"
 #include "gvdp/world/voxel.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 struct DensitySample {
   float d;
@@ -110,4 +110,4 @@ GVDP_HD GVDP_INLINE VoxelSample produceFbm(Vec3d p, float voxelSize, uint32_t se
   return makeVoxel(albedo, normal, alpha, empty);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

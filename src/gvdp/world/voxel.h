@@ -9,7 +9,7 @@
 
 #include "gvdp/base/vecmath.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 using Rgba8 = uint32_t;  // bytes r, g, b, a in memory order (little-endian), as uchar4
 
@@ -55,4 +55,4 @@ GVDP_HD GVDP_INLINE VoxelSample makeVoxel(Vec3f albedo, Vec3f normal, float alph
   return {packRgba8(bakeShading(albedo, normal) * alpha, alpha), empty};
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

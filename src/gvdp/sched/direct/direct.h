@@ -5,9 +5,9 @@
 
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::unique_ptr<Scheduler> makeDirectCpu(ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makeDirectCuda(ProducerKernelsPtr producer);  // CUDA builds only
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -1,6 +1,6 @@
 #include "gvdp/sched/direct/direct.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class DirectCpu final : public Scheduler {
@@ -21,4 +21,4 @@ std::unique_ptr<Scheduler> makeDirectCpu(ProducerKernelsPtr producer) {
   return std::make_unique<DirectCpu>(std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -2,7 +2,7 @@
 #include "gvdp/sched/direct/direct.h"
 #include "gvdp/sched/producer_kernels_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class DirectCuda final : public Scheduler {
@@ -37,4 +37,4 @@ std::unique_ptr<Scheduler> makeDirectCuda(ProducerKernelsPtr producer) {
   return std::make_unique<DirectCuda>(std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -4,7 +4,7 @@
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/render/direct.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class P>
 __global__ void directKernel(FrameSetup frame, P producer, uint32_t* image) {
@@ -23,4 +23,4 @@ void launchDirectKernel(const FrameSetup& frame, const P& producer, uint32_t* im
   directKernel<<<grid, block>>>(frame, producer, image);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

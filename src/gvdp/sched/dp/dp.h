@@ -9,11 +9,11 @@
 
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
 // Bytes of the CPU task queue at full capacity (its memory() item "task_queue").
 size_t dpCpuTaskQueueBytes(size_t pendingLaunches);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

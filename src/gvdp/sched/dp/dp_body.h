@@ -12,7 +12,7 @@
 #include "gvdp/cache/cached_access.h"
 #include "gvdp/sched/ray_tasks.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr uint32_t RAY_FREE = 0, RAY_HELD = 1, RAY_DONE = 2;
 constexpr int DP_TILE_W = 32, DP_TILE_H = 16;
@@ -117,4 +117,4 @@ GVDP_HD GVDP_INLINE int dpTileCount(const FrameSetup& f) {
   return ((f.width + DP_TILE_W - 1) / DP_TILE_W) * ((f.height + DP_TILE_H - 1) / DP_TILE_H);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -9,7 +9,7 @@
 #include "gvdp/sched/dp/task_queue.h"
 #include "gvdp/sched/sp/sp_loop_cpu.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 struct DpTask {
@@ -133,4 +133,4 @@ std::unique_ptr<Scheduler> makeDpCpu(const SchedulerOptions& o, ProducerKernelsP
   return std::make_unique<DpCpu>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -3,7 +3,7 @@
 #include "gvdp/sched/sp/sp_cuda.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class DpCuda final : public SpFrameCuda {
@@ -104,4 +104,4 @@ std::unique_ptr<Scheduler> makeDpCuda(const SchedulerOptions& o, ProducerKernels
   return std::make_unique<DpCuda>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

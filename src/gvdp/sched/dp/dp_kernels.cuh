@@ -12,7 +12,7 @@
 #include "gvdp/sched/dp/dp_body.h"
 #include "gvdp/sched/produce_block.cuh"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Kernels nest at most this deep (CUDA's launch nesting limit is 24); a production that would
 // go deeper is queued for the host's sweep instead (counted as DP_DEFERRED).
@@ -102,4 +102,4 @@ void launchDpRoot(const DpContext* deviceContext, const FrameSetup& frame, const
   dpRootKernel<<<dpTileCount(frame), DP_TILE_W * DP_TILE_H>>>(deviceContext, producer);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include <deque>
 #include <mutex>
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class Task>
 class TaskQueue {
@@ -47,4 +47,4 @@ class TaskQueue {
   size_t running_ = 0;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Who repeats the loop's body. Device: the graph's conditional WHILE node (the scheduler).
 // Host: the graph is the body alone, launched again while loop.stop is 0 (one read-back per
@@ -23,4 +23,4 @@ GraphDriver graphDriverFromEnvironment();
 std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

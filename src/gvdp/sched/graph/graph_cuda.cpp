@@ -3,7 +3,7 @@
 #include "gvdp/sched/sp/sp.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class GraphCuda final : public SpFrameCuda {
@@ -54,4 +54,4 @@ std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions& o, ProducerKern
   return std::make_unique<GraphCuda>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/sched/graph/graph.h"
 #include "gvdp/sched/graph/graph_frame.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 class CudaProducerKernels;
 
@@ -17,4 +17,4 @@ class CudaProducerKernels;
 cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop, GraphDriver driver,
                              const CudaProducerKernels& producer);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

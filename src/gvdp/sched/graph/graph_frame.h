@@ -7,7 +7,7 @@
 #include "gvdp/render/frame.h"
 #include "gvdp/render/march.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // What the graph's kernels read per frame: uploaded to device memory before each launch (a
 // graph's kernel parameters are fixed when it is built).
@@ -32,4 +32,4 @@ struct GraphLoop {
   uint32_t cursor;  // next item of the current pass (render: per warp; production: per block)
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -11,7 +11,7 @@
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp/sp.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 constexpr int RENDER_BLOCK = 128;
@@ -124,4 +124,4 @@ cudaGraphExec_t buildSpGraph(const GraphFrame* frame, GraphLoop* loop, GraphDriv
   return exec;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include "gvdp/sched/graph/graph_frame.h"
 #include "gvdp/sched/produce_block.cuh"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class P>
 __global__ void __launch_bounds__(PRODUCE_BLOCK)
@@ -34,4 +34,4 @@ void captureGraphProduceKernel(const GraphFrame* frame, GraphLoop* loop, const P
   graphProduceKernel<<<blocks, PRODUCE_BLOCK, 0, stream>>>(frame, loop, producer);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

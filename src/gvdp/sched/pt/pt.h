@@ -7,9 +7,9 @@
 
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

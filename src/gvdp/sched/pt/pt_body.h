@@ -20,7 +20,7 @@
 #include "gvdp/cache/cached_access.h"
 #include "gvdp/sched/ray_tasks.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 constexpr uint32_t LIST_END = 0xffffffffu, LIST_CLOSED = 0xfffffffeu;
 constexpr int PT_BATCH = 32;           // rays per render task (a warp)
@@ -219,6 +219,42 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, Pa
   }
 }
 
+// pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
+// run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
+// PT_BATCH items of the tiled screen, until no ray of the frame is left. The Worker supplies the
+// steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which with nothing to take
+// helps a production of its block before it idles):
+//   uint32_t liveRays()                                     the frame is over at 0
+//   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
+//   void produce(uint32_t position)                         the task at a claimed position
+//   void renderQueued(uint32_t position, uint32_t n)        n claimed relaunched rays
+//   uint32_t claimFresh()                                   first item, itemCount when none is left
+//   void renderFresh(uint32_t first)                        items first .. first + PT_BATCH - 1
+//   void idle(), finish()                                   nothing to take; the loop is over
+template <class Worker>
+GVDP_HD void ptWorkerLoop(const PtContext& ctx, Worker& w) {
+  while (w.liveRays() != 0) {
+    uint32_t position = 0;
+    if (w.claim(ctx.tasks, 1, &position)) {
+      w.produce(position);
+    } else if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
+      w.renderQueued(position, n);
+    } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
+      w.renderFresh(first);
+    } else {
+      w.idle();
+    }
+  }
+  w.finish();
+}
+
+// The next PT_BATCH items of the tiled screen for one claimant; itemCount when none is left.
+GVDP_HD GVDP_INLINE uint32_t claimFreshItems(const PtContext& ctx) {
+  if (loadRelaxed32(ctx.counter(PT_NEXT_ITEM)) >= ctx.itemCount) return ctx.itemCount;
+  uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_ITEM), static_cast<uint32_t>(PT_BATCH));
+  return first < ctx.itemCount ? first : ctx.itemCount;
+}
+
 GVDP_HD GVDP_INLINE void releaseTaskId(const PtContext& ctx, uint32_t id) {
   ringPush(ctx.freeIds, id);
 }
@@ -275,4 +311,4 @@ GVDP_HD GVDP_INLINE uint32_t ringCapacity(uint32_t n) {
   return c;
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

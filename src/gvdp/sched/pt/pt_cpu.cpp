@@ -7,7 +7,7 @@
 #include "gvdp/sched/pt/pt_body.h"
 #include "gvdp/sched/sp/sp_loop_cpu.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class PtCpu final : public SpFrameCpu {
@@ -30,7 +30,11 @@ class PtCpu final : public SpFrameCpu {
     BrickPool pool = cache_.pool();
     ThreadPool& threads = ThreadPool::global();
     threads.run(
-        threads.size(), 1, [&](int64_t, int64_t, int worker) { work(ctx, pool, worker); },
+        threads.size(), 1,
+        [&](int64_t, int64_t, int worker) {
+          Worker w{ctx, pool, producer(), worker};
+          ptWorkerLoop(ctx, w);
+        },
         NO_RECORD);
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
@@ -61,40 +65,62 @@ class PtCpu final : public SpFrameCpu {
          taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data()});
   }
 
-  // One worker: production first, then relaunched rays, then fresh tiles, until no ray is left.
-  void work(const PtContext& ctx, const BrickPool& pool, int worker) {
-    const FrameSetup& f = ctx.frame;
-    while (loadAcquire32(ctx.counter(PT_LIVE_RAYS)) != 0) {
-      uint64_t start = steadyNanoseconds();
-      TaskKind kind = TaskKind::Render;
-      uint32_t position = 0, finished = 0;
-      if (ringClaim(ctx.tasks, 1, &position)) {
+  // One worker (a thread) of pt's loop; each task is a record of the timeline.
+  struct Worker {
+    const PtContext& ctx;
+    const BrickPool& pool;
+    const ProducerKernels& producer;
+    int worker;
+
+    uint32_t liveRays() const { return loadAcquire32(ctx.counter(PT_LIVE_RAYS)); }
+    uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
+      return ringClaim(r, n, position);
+    }
+    void produce(uint32_t position) const {
+      timed(TaskKind::Produce, [&] {
         uint32_t id = ringTake(ctx.tasks, position);
-        producer().produceBrick(ctx.cache, pool, loadTaskKey(ctx, id));
+        producer.produceBrick(ctx.cache, pool, loadTaskKey(ctx, id));
         finishProductionTask(ctx, id);
         atomicAdd32(ctx.counter(PT_PRODUCTIONS), 1u);
-        kind = TaskKind::Produce;
-      } else if (uint32_t n = ringClaim(ctx.rays, PT_BATCH, &position)) {
+      });
+    }
+    void renderQueued(uint32_t position, uint32_t n) const {
+      timed(TaskKind::Render, [&] {
         uint32_t batch[PT_BATCH];
         for (uint32_t i = 0; i < n; ++i) batch[i] = ringTake(ctx.rays, position + i);
-        for (uint32_t i = 0; i < n; ++i) finished += ptRunRay(ctx, pool, batch[i]) ? 1u : 0u;
-        atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
-      } else if (loadRelaxed32(ctx.counter(PT_NEXT_ITEM)) < ctx.itemCount) {
-        uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_ITEM), PT_BATCH);
-        for (uint32_t i = first; i < first + PT_BATCH && i < ctx.itemCount; ++i) {
-          int pixel = tiledPixel(f, static_cast<int>(i));
-          if (pixel >= 0) finished += ptRunRay(ctx, pool, static_cast<uint32_t>(pixel)) ? 1u : 0u;
-        }
-        atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
-      } else {
-        spinPause();
-        continue;
+        renderRays(n, [&](uint32_t i) { return static_cast<int>(batch[i]); });
+      });
+    }
+    uint32_t claimFresh() const { return claimFreshItems(ctx); }
+    void renderFresh(uint32_t first) const {
+      timed(TaskKind::Render, [&] {
+        uint32_t n = ctx.itemCount - first < PT_BATCH ? ctx.itemCount - first : PT_BATCH;
+        renderRays(n,
+                   [&](uint32_t i) { return tiledPixel(ctx.frame, static_cast<int>(first + i)); });
+      });
+    }
+    void idle() const { spinPause(); }
+    void finish() const {}
+
+    // Runs rays pixel(0 .. n-1) (a pixel < 0 is none) until each finishes or parks.
+    template <class PixelOf>
+    void renderRays(uint32_t n, PixelOf pixel) const {
+      uint32_t finished = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        int p = pixel(i);
+        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p))) ++finished;
       }
       if (finished) atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);
+      atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
+    }
+    template <class Task>
+    void timed(TaskKind kind, Task task) const {
+      uint64_t start = steadyNanoseconds();
+      task();
       if (TaskObserver o = taskObserver())
         o(static_cast<uint8_t>(kind), worker, start, steadyNanoseconds());
     }
-  }
+  };
 
   std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_;
   std::vector<uint32_t> waitHead_, waitNext_, counters_;
@@ -107,4 +133,4 @@ std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& o, ProducerKernelsP
   return std::make_unique<PtCpu>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

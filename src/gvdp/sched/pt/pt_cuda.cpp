@@ -5,7 +5,7 @@
 #include "gvdp/sched/pt/pt_cuda.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 class PtCuda final : public SpFrameCuda {
@@ -91,4 +91,4 @@ std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& o, ProducerKernels
   return std::make_unique<PtCuda>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -4,9 +4,9 @@
 
 #include "gvdp/sched/pt/pt_body.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Empties the ray and task rings and fills the free task-id ring with ids 0..ids-1.
 void launchPtRingsInit(const PtContext& ctx, uint32_t ids);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

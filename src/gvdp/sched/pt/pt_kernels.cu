@@ -1,7 +1,7 @@
 // The pt rings' initialisation kernel (the worker kernel: pt_worker.cuh).
 #include "gvdp/sched/pt/pt_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 __global__ void ringInitKernel(Ring ring, uint32_t filled) {
@@ -22,4 +22,4 @@ void launchPtRingsInit(const PtContext& ctx, uint32_t ids) {
   initRing(ctx.freeIds, ids);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

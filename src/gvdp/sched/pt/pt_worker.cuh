@@ -1,6 +1,6 @@
-// The persistent kernel of the pt scheduler: every warp is a worker that takes, in this order, a
-// production task (the warp produces the brick: 1000 samples over 32 lanes), up to 32 relaunched
-// rays, or the next 8x4 pixels of the screen, until no ray of the frame is left (pt_body.h).
+// The persistent kernel of the pt scheduler: every warp is a worker of pt's loop (pt_body.h) that
+// takes a production task (the warp produces the brick: 1000 samples over 32 lanes), up to 32
+// relaunched rays, or the next 8x4 pixels of the screen, until no ray of the frame is left.
 // Timeline records are per warp: a span of consecutive tasks of one kind, closed when the warp
 // switches kind or finds no work (idle warps are idle on the timeline). A template on the
 // producer (producer_kernels_of.h); the rings' initialisation is in pt_kernels.cu.
@@ -12,7 +12,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/pt/pt_body.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // 3 blocks of 8 warps per SM (80 registers): measured on an H100 against 2 (125 registers) and
 // 4 (64, spilling), perlin 1500x1000: 24 ms per frame against 39 and 25.
@@ -221,6 +221,75 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
   }
 }
 
+// One worker (a warp) of pt's loop (pt_body.h): every lane runs every step, lane 0 claims and
+// shares what it claimed. With nothing to take, the warp helps a production of its block (the
+// tail of the frame), or sleeps with an exponential backoff.
+template <class P>
+struct WarpWorker {
+  const PtContext& ctx;
+  const BrickPool& pool;
+  const P& producer;
+  BlockProductions& bp;
+  int warp, lane;
+  WarpSpan span;
+  unsigned backoff = 32;
+
+  __device__ uint32_t liveRays() const {
+    uint32_t live = 0;
+    if (lane == 0) live = loadRelaxed32(ctx.counter(PT_LIVE_RAYS));
+    return __shfl_sync(FULL_MASK, live, 0);
+  }
+  __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
+    return warpClaim(r, n, position, lane);
+  }
+  __device__ void produce(uint32_t position) {
+    span.begin(TaskKind::Produce);
+    uint32_t id = 0;
+    if (lane == 0) id = ringTake(ctx.tasks, position);
+    produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), bp, warp, lane);
+    worked();
+  }
+  __device__ void renderQueued(uint32_t position, uint32_t n) {
+    span.begin(TaskKind::Render);
+    int pixel =
+        lane < static_cast<int>(n) ? static_cast<int>(ringTake(ctx.rays, position + lane)) : -1;
+    renderLanes(ctx, pool, pixel, lane);
+    worked();
+  }
+  __device__ uint32_t claimFresh() const {
+    uint32_t first = 0;
+    if (lane == 0) first = claimFreshItems(ctx);
+    return __shfl_sync(FULL_MASK, first, 0);
+  }
+  __device__ void renderFresh(uint32_t first) {
+    span.begin(TaskKind::Render);
+    uint32_t item = first + static_cast<uint32_t>(lane);
+    renderLanes(ctx, pool,
+                item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, lane);
+    worked();
+  }
+  __device__ void idle() {
+    uint32_t open = 0;
+    if (lane == 0) open = loadRelaxed32(&bp.open) & ~(1u << warp);
+    open = __shfl_sync(FULL_MASK, open, 0);
+    if (open) {
+      span.begin(TaskKind::Produce);
+      produceChunks(producer, bp, __ffs(static_cast<int>(open)) - 1, lane);
+      worked();
+      return;
+    }
+    span.close();
+    __nanosleep(backoff);
+    backoff = backoff < 1024 ? backoff * 2 : backoff;
+  }
+  __device__ void finish() { span.close(); }
+
+  __device__ void worked() {
+    span.taskDone();
+    backoff = 32;
+  }
+};
+
 template <class P>
 __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
     ptWorkerKernel(const __grid_constant__ PtContext ctx, const __grid_constant__ BrickPool pool,
@@ -230,59 +299,14 @@ __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
   if (threadIdx.x == 0) bp.open = 0;
   if (lane == 0) bp.next[warp] = PRODUCE_CHUNKS;
   __syncthreads();
-  WarpSpan span{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()};
-  unsigned backoff = 32;
-  for (;;) {
-    uint32_t live = 0;
-    if (lane == 0) live = loadRelaxed32(ctx.counter(PT_LIVE_RAYS));
-    if (__shfl_sync(FULL_MASK, live, 0) == 0) break;
-    uint32_t open = 0, position = 0;
-    if (warpClaim(ctx.tasks, 1, &position, lane)) {
-      span.begin(TaskKind::Produce);
-      uint32_t id = 0;
-      if (lane == 0) id = ringTake(ctx.tasks, position);
-      produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), bp, warp, lane);
-      span.taskDone();
-      backoff = 32;
-      continue;
-    }
-    if (uint32_t n = warpClaim(ctx.rays, PT_BATCH, &position, lane)) {
-      span.begin(TaskKind::Render);
-      int pixel =
-          lane < static_cast<int>(n) ? static_cast<int>(ringTake(ctx.rays, position + lane)) : -1;
-      renderLanes(ctx, pool, pixel, lane);
-      span.taskDone();
-      backoff = 32;
-      continue;
-    }
-    uint32_t first = ctx.itemCount;
-    if (lane == 0 && loadRelaxed32(ctx.counter(PT_NEXT_ITEM)) < ctx.itemCount)
-      first = atomicAdd(ctx.counter(PT_NEXT_ITEM), static_cast<uint32_t>(PT_BATCH));
-    first = __shfl_sync(FULL_MASK, first, 0);
-    if (first < ctx.itemCount) {
-      span.begin(TaskKind::Render);
-      uint32_t item = first + static_cast<uint32_t>(lane);
-      renderLanes(ctx, pool,
-                  item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, lane);
-      span.taskDone();
-      backoff = 32;
-      continue;
-    }
-    // Nothing else to do: help a production of this block (the tail of the frame), or idle.
-    if (lane == 0) open = loadRelaxed32(&bp.open) & ~(1u << warp);
-    open = __shfl_sync(FULL_MASK, open, 0);
-    if (open) {
-      span.begin(TaskKind::Produce);
-      produceChunks(producer, bp, __ffs(static_cast<int>(open)) - 1, lane);
-      span.taskDone();
-      backoff = 32;
-      continue;
-    }
-    span.close();
-    __nanosleep(backoff);
-    backoff = backoff < 1024 ? backoff * 2 : backoff;
-  }
-  span.close();
+  WarpWorker<P> w{ctx,
+                  pool,
+                  producer,
+                  bp,
+                  warp,
+                  lane,
+                  WarpSpan{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()}};
+  ptWorkerLoop(ctx, w);
 }
 
 template <class P>
@@ -295,4 +319,4 @@ void launchPtWorkers(const PtContext& ctx, const BrickPool& pool, const P& produ
   ptWorkerKernel<<<blocks, PT_BLOCK>>>(ctx, pool, producer);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -9,7 +9,7 @@
 
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
@@ -18,4 +18,4 @@ std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& options, ProducerK
 // normal frame needs a few dozen).
 constexpr int SP_MAX_PASSES = 4096;
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/sched/sp/sp_loop.h"
 #include "gvdp/sched/sp/sp_loop_cpu.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 // The sp loop's steps on the CPU backend (sp_loop.h).
@@ -125,4 +125,4 @@ std::unique_ptr<Scheduler> makeSpCpu(const SchedulerOptions& o, ProducerKernelsP
   return std::make_unique<SpCpu>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -4,7 +4,7 @@
 #include "gvdp/sched/sp/sp_loop.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 namespace {
 // The sp loop's steps on the CUDA backend (sp_loop.h): the host reads the counts after every
@@ -98,4 +98,4 @@ std::unique_ptr<Scheduler> makeSpCuda(const SchedulerOptions& o, ProducerKernels
   return std::make_unique<SpCuda>(o, std::move(producer));
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

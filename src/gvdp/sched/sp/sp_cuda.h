@@ -5,7 +5,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/march.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // passCounters[0]: rays stopped in the pass (appended to `next`); [1]: unfinished at resolve.
 void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
@@ -19,4 +19,4 @@ void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint3
 void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
                    uint32_t* passCounters);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

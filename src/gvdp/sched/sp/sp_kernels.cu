@@ -7,7 +7,7 @@
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp/sp_cuda.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 namespace {
 
 constexpr int RENDER_BLOCK = 128;
@@ -76,4 +76,4 @@ void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image
                   });
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -18,7 +18,7 @@
 #include "gvdp/sched/scheduler.h"
 #include "gvdp/sched/sp/sp.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Produces the queued bricks; a production that found no free slot refills the free list from
 // the slots this frame has not used, and the frame is degraded when none is left.
@@ -51,4 +51,4 @@ void runSpLoop(B& backend, uint32_t liveCount, bool tiled, FrameStats& stats) {
   }
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -8,7 +8,7 @@
 #include "gvdp/render/march.h"
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Runs passes until no ray is left. With `tiled`, the first pass covers every pixel in 8x8
 // tiles from a fresh state; otherwise it resumes the `liveCount` rays of `live`. Bricks already
@@ -34,4 +34,4 @@ class SpFrameCpu : public Scheduler {
   std::vector<RayState> payload_;
 };
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -7,7 +7,7 @@
 #include "gvdp/render/march.h"
 #include "gvdp/sched/scheduler.h"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 // Device buffers of the loop: ray payloads, two live-ray lists, the pass counters
 // ([0] rays stopped in a pass, [1] unfinished at resolve) and the image.
@@ -52,4 +52,4 @@ class SpFrameCuda : public Scheduler {
 int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b);
 void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out);
 
-}  // namespace gvdp
+}  // namespace gvdp::detail

@@ -4,7 +4,7 @@
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/produce_block.cuh"
 
-namespace gvdp {
+namespace gvdp::detail {
 
 template <class P>
 __global__ void __launch_bounds__(PRODUCE_BLOCK)
@@ -19,4 +19,4 @@ void launchProduceKernel(const FrameSetup& f, const CacheView& cache, const Bric
   if (requests) produceKernel<<<requests, PRODUCE_BLOCK>>>(f, cache, pool, producer);
 }
 
-}  // namespace gvdp
+}  // namespace gvdp::detail
