@@ -70,7 +70,8 @@ class Renderer {
   // Renders the next frame of the sequence from `pose` into a host image (resized to fit).
   FrameStats render(const CameraPose& pose, Image& out);
   // The same into `devicePixels` (width * height RGBA8 words of device memory), the copy
-  // enqueued on `stream` (cuda backend; the renderer's own work is finished when this returns).
+  // enqueued on `stream` (cuda backend). The renderer works on a stream of its own and has
+  // finished the frame when this returns; its next frame waits for the copy.
   FrameStats render(const CameraPose& pose, uint32_t* devicePixels, CUstream_st* stream);
   // Bytes of every structure the renderer holds, by name.
   MemoryReport memory() const;

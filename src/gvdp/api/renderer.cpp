@@ -61,8 +61,10 @@ FrameStats Renderer::render(const CameraPose& pose, uint32_t* devicePixels, CUst
   GVDP_INPUT_CHECK(devicePixels, "render to device memory: null pixel pointer");
   FrameStats stats = scheduler_->render(frameAt(pose), nullptr);
   ++frames_;
+  // The frame is finished on the renderer's stream; the next one waits for this copy.
   copyDeviceAsync(devicePixels, scheduler_->deviceImage(),
-                  static_cast<size_t>(options_.width) * options_.height * sizeof(uint32_t), stream);
+                  static_cast<size_t>(options_.width) * options_.height * sizeof(uint32_t), stream,
+                  scheduler_->stream());
   return stats;
 }
 

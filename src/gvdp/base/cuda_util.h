@@ -1,5 +1,7 @@
-// CUDA helpers for host code of the CUDA backend: error checks that throw with file:line, and
-// one RAII owner of device memory (docs/STYLE.md 5). Included only by CUDA-enabled sources.
+// CUDA helpers for host code of the CUDA backend: error checks that throw with file:line, one
+// RAII owner of device memory (docs/STYLE.md 5), copies ordered on a stream (the library's work
+// runs on each scheduler's own stream, never the default one). Included only by CUDA-enabled
+// sources.
 #pragma once
 
 #include <cuda_runtime_api.h>
@@ -49,6 +51,22 @@ class DeviceBuffer {
   size_t count_ = 0;
 };
 
+// Device memory to the host after the work queued on `stream`: returns when the bytes are there.
+inline void readDevice(void* to, const void* from, size_t bytes, cudaStream_t stream) {
+  GVDP_CUDA_CHECK(cudaMemcpyAsync(to, from, bytes, cudaMemcpyDeviceToHost, stream));
+  GVDP_CUDA_CHECK(cudaStreamSynchronize(stream));
+}
+
+// Host memory to the device, ordered on `stream`; `from` may go once this returns (CUDA stages
+// pageable memory before cudaMemcpyAsync returns).
+inline void writeDevice(void* to, const void* from, size_t bytes, cudaStream_t stream) {
+  GVDP_CUDA_CHECK(cudaMemcpyAsync(to, from, bytes, cudaMemcpyHostToDevice, stream));
+}
+
+inline void fillDevice(void* to, int byte, size_t bytes, cudaStream_t stream) {
+  if (bytes) GVDP_CUDA_CHECK(cudaMemsetAsync(to, byte, bytes, stream));
+}
+
 // An NVTX range (Nsight Systems shows the frame's phases), for the lifetime of the object.
 class NvtxRange {
  public:
@@ -71,8 +89,8 @@ class GpuTimer {
   }
   GpuTimer(const GpuTimer&) = delete;
   GpuTimer& operator=(const GpuTimer&) = delete;
-  void start(cudaStream_t s = nullptr) { GVDP_CUDA_CHECK(cudaEventRecord(start_, s)); }
-  void stop(cudaStream_t s = nullptr) { GVDP_CUDA_CHECK(cudaEventRecord(stop_, s)); }
+  void start(cudaStream_t s) { GVDP_CUDA_CHECK(cudaEventRecord(start_, s)); }
+  void stop(cudaStream_t s) { GVDP_CUDA_CHECK(cudaEventRecord(stop_, s)); }
   float ms() {
     GVDP_CUDA_CHECK(cudaEventSynchronize(stop_));
     float ms = 0.0f;

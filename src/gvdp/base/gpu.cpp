@@ -40,11 +40,30 @@ std::optional<uint64_t> cudaFreeMemoryBytes() {
     return std::nullopt;
   return freeBytes;
 }
-void copyDeviceAsync(void* dst, const void* src, size_t bytes, void* stream) {
-  cudaError_t e =
-      cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, static_cast<cudaStream_t>(stream));
-  if (e != cudaSuccess)
-    throw Error(std::string("device image copy failed: ") + cudaGetErrorString(e));
+namespace {
+void check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw Error(std::string(what) + " failed: " + cudaGetErrorString(e));
+}
+}  // namespace
+
+GpuStream createGpuStream() {
+  cudaStream_t s = nullptr;
+  check(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking), "cudaStreamCreateWithFlags");
+  return s;
+}
+
+void destroyGpuStream(GpuStream stream) {
+  cudaStreamDestroy(stream);
+}
+
+void copyDeviceAsync(void* dst, const void* src, size_t bytes, GpuStream stream, GpuStream after) {
+  check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, stream), "device image copy");
+  cudaEvent_t copied = nullptr;
+  check(cudaEventCreateWithFlags(&copied, cudaEventDisableTiming), "cudaEventCreate");
+  cudaError_t e = cudaEventRecord(copied, stream);
+  if (e == cudaSuccess) e = cudaStreamWaitEvent(after, copied, 0);
+  cudaEventDestroy(copied);  // released once the copy is done
+  check(e, "ordering the device image copy");
 }
 #else
 bool cudaBuilt() {
@@ -59,7 +78,11 @@ std::string cudaDeviceSummary() {
 std::optional<uint64_t> cudaFreeMemoryBytes() {
   return std::nullopt;
 }
-void copyDeviceAsync(void*, const void*, size_t, void*) {
+GpuStream createGpuStream() {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+void destroyGpuStream(GpuStream) {}
+void copyDeviceAsync(void*, const void*, size_t, GpuStream, GpuStream) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 #endif

@@ -4,10 +4,15 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
+struct CUstream_st;  // cudaStream_t is CUstream_st*
+
 namespace gvdp::detail {
+
+using GpuStream = CUstream_st*;
 
 bool cudaBuilt();
 bool cudaDeviceAvailable();
@@ -15,7 +20,16 @@ bool cudaDeviceAvailable();
 std::string cudaDeviceSummary();
 // Free memory of the current device (cudaMemGetInfo); nullopt without a device.
 std::optional<uint64_t> cudaFreeMemoryBytes();
-// Enqueues a device-to-device copy on `stream` (a cudaStream_t); throws in builds without CUDA.
-void copyDeviceAsync(void* dst, const void* src, size_t bytes, void* stream);
+// A stream of the library's own (non-blocking: it never waits for the legacy default stream);
+// its handle is a cudaStream_t. Throws in builds without CUDA.
+GpuStream createGpuStream();
+void destroyGpuStream(GpuStream stream);
+struct GpuStreamDeleter {
+  void operator()(GpuStream s) const { destroyGpuStream(s); }
+};
+using OwnedGpuStream = std::unique_ptr<CUstream_st, GpuStreamDeleter>;
+// Enqueues a device-to-device copy on `stream`, then makes `after` wait for it (the next work of
+// `after` may overwrite `src`). Throws in builds without CUDA.
+void copyDeviceAsync(void* dst, const void* src, size_t bytes, GpuStream stream, GpuStream after);
 
 }  // namespace gvdp::detail

@@ -29,12 +29,14 @@ class BrickCache {
   template <class T>
   using Buffer = typename Ops::template Buffer<T>;
 
-  explicit BrickCache(uint32_t poolBricks)
+  // `opsArgs` follow the pool size to the Ops' constructor (CudaCacheOps: the stream).
+  template <class... OpsArgs>
+  explicit BrickCache(uint32_t poolBricks, OpsArgs... opsArgs)
       : poolBricks_(poolBricks),
         timestamps_(poolBricks),
         counters_(COUNTER_COUNT),
         inverse_(poolBricks),
-        ops_(poolBricks) {
+        ops_(poolBricks, opsArgs...) {
     GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
     texels_ = Buffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
   }
@@ -53,9 +55,9 @@ class BrickCache {
     if (u.fullReset) {
       if (entries_.size() != clipmap_.entryCount())
         entries_ = Buffer<uint32_t>(clipmap_.entryCount());
-      Ops::fillBytes(entries_, 0xff);  // ENTRY_MISSING
-      Ops::fillBytes(timestamps_, 0);  // never used
-      Ops::fillBytes(inverse_, 0xff);  // level NO_LEVEL
+      ops_.fillBytes(entries_, 0xff);  // ENTRY_MISSING
+      ops_.fillBytes(timestamps_, 0);  // never used
+      ops_.fillBytes(inverse_, 0xff);  // level NO_LEVEL
       resident_ = 0;
     } else {
       ops_.resetSlabs(view(), u.slabs, timeline_);

@@ -7,48 +7,46 @@
 
 namespace gvdp::detail {
 
-CudaCacheOps::CudaCacheOps(uint32_t poolBricks)
-    : keysIn_(poolBricks),
+CudaCacheOps::CudaCacheOps(uint32_t poolBricks, cudaStream_t stream)
+    : stream_(stream),
+      keysIn_(poolBricks),
       keysOut_(poolBricks),
       valuesIn_(poolBricks),
       valuesOut_(poolBricks),
       counts_(2),
       temp_(lruSortTempBytes(poolBricks)) {}
 
-void CudaCacheOps::fillBytes(void* p, size_t bytes, int byte) {
-  if (bytes) GVDP_CUDA_CHECK(cudaMemset(p, byte, bytes));
+void CudaCacheOps::zero(uint32_t* p, size_t n) const {
+  fillDevice(p, 0, n * sizeof(uint32_t), stream_);
 }
 
-void CudaCacheOps::zero(uint32_t* p, size_t n) {
-  GVDP_CUDA_CHECK(cudaMemset(p, 0, n * sizeof(uint32_t)));
+void CudaCacheOps::read(const uint32_t* from, uint32_t* to, size_t n) const {
+  readDevice(to, from, n * sizeof(uint32_t), stream_);
 }
 
-void CudaCacheOps::read(const uint32_t* from, uint32_t* to, size_t n) {
-  GVDP_CUDA_CHECK(cudaMemcpy(to, from, n * sizeof(uint32_t), cudaMemcpyDeviceToHost));
-}
-
-void CudaCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView& t) {
+void CudaCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs,
+                              const TimelineView& t) const {
   NvtxRange range("cache: clipmap move");
-  launchResetSlabs(v, slabs, t);
+  launchResetSlabs(v, slabs, t, stream_);
 }
 
 const uint32_t* CudaCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
                                       uint32_t counts[2], const TimelineView& t) {
   NvtxRange range("cache: LRU sort");
-  launchPrepareLruSort(timestamps, keysIn_.data(), valuesIn_.data(), n, t);
+  launchPrepareLruSort(timestamps, keysIn_.data(), valuesIn_.data(), n, t, stream_);
   int endBit = std::max(1, static_cast<int>(std::bit_width(frame)));
   lruSort(temp_.data(), temp_.size(), keysIn_.data(), keysOut_.data(), valuesIn_.data(),
-          valuesOut_.data(), n, endBit);
+          valuesOut_.data(), n, endBit, stream_);
   zero(counts_.data(), 2);
-  launchCountOlder(keysOut_.data(), n, 1u, counts_.data(), t);
-  launchCountOlder(keysOut_.data(), n, frame, counts_.data() + 1, t);
+  launchCountOlder(keysOut_.data(), n, 1u, counts_.data(), t, stream_);
+  launchCountOlder(keysOut_.data(), n, frame, counts_.data() + 1, t, stream_);
   read(counts_.data(), counts, 2);
   return valuesOut_.data();
 }
 
 void CudaCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
-                              const TimelineView& t) {
-  launchUnmapSlots(v, slots, n, t);
+                              const TimelineView& t) const {
+  launchUnmapSlots(v, slots, n, t, stream_);
   GVDP_CUDA_CHECK(cudaGetLastError());
 }
 

@@ -16,23 +16,24 @@ class CudaCacheOps {
   using Buffer = DeviceBuffer<T>;
   static constexpr const char* LRU_NAME = "free_slot_list_and_lru_sort";
 
-  explicit CudaCacheOps(uint32_t poolBricks);
+  // Every operation runs on `stream` (the scheduler's).
+  CudaCacheOps(uint32_t poolBricks, cudaStream_t stream);
 
   template <class T>
-  static void fillBytes(DeviceBuffer<T>& b, int byte) {
-    fillBytes(b.data(), b.bytes(), byte);
+  void fillBytes(DeviceBuffer<T>& b, int byte) const {
+    fillDevice(b.data(), byte, b.bytes(), stream_);
   }
-  static void fillBytes(void* p, size_t bytes, int byte);
-  static void zero(uint32_t* p, size_t n);
-  static void read(const uint32_t* from, uint32_t* to, size_t n);  // synchronises
-  static void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView& t);
+  void zero(uint32_t* p, size_t n) const;
+  void read(const uint32_t* from, uint32_t* to, size_t n) const;  // synchronises
+  void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView& t) const;
   const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
                           uint32_t counts[2], const TimelineView& t);
-  static void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
-                         const TimelineView& t);
+  void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
+                  const TimelineView& t) const;
   size_t lruBytes() const;
 
  private:
+  cudaStream_t stream_;
   DeviceBuffer<uint32_t> keysIn_, keysOut_, valuesIn_, valuesOut_, counts_;
   DeviceBuffer<uint8_t> temp_;
 };

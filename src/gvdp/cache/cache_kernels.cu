@@ -6,17 +6,19 @@
 
 namespace gvdp::detail {
 
-void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline) {
-  parallelForCuda("cache: reset slabs", jobs.total(), timeline, TaskKind::Cache,
+void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline,
+                      cudaStream_t stream) {
+  parallelForCuda("cache: reset slabs", stream, jobs.total(), timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { resetSlabItem(cache, jobs, i); });
 }
 
 void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n,
-                          const TimelineView& timeline) {
-  parallelForCuda("cache: LRU sort keys", n, timeline, TaskKind::Cache, [=] __device__(uint32_t i) {
-    keys[i] = timestamps[i];
-    values[i] = i;
-  });
+                          const TimelineView& timeline, cudaStream_t stream) {
+  parallelForCuda("cache: LRU sort keys", stream, n, timeline, TaskKind::Cache,
+                  [=] __device__(uint32_t i) {
+                    keys[i] = timestamps[i];
+                    values[i] = i;
+                  });
 }
 
 size_t lruSortTempBytes(uint32_t n) {
@@ -28,22 +30,25 @@ size_t lruSortTempBytes(uint32_t n) {
 }
 
 void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* keysOut,
-             const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit) {
-  cub::DeviceRadixSort::SortPairs(temp, tempBytes, keysIn, keysOut, valuesIn, valuesOut, n, 0,
-                                  endBit);
+             const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit,
+             cudaStream_t stream) {
+  GVDP_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp, tempBytes, keysIn, keysOut, valuesIn,
+                                                  valuesOut, n, 0, endBit, stream));
 }
 
 void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
-                      const TimelineView& timeline) {
+                      const TimelineView& timeline, cudaStream_t stream) {
   // Sorted ascending: the keys below `frame` are a prefix; its last element writes the length.
-  parallelForCuda("cache: count older", n, timeline, TaskKind::Cache, [=] __device__(uint32_t i) {
-    if (sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame)) *count = i + 1;
-  });
+  parallelForCuda("cache: count older", stream, n, timeline, TaskKind::Cache,
+                  [=] __device__(uint32_t i) {
+                    if (sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame))
+                      *count = i + 1;
+                  });
 }
 
 void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
-                      const TimelineView& timeline) {
-  parallelForCuda("cache: unmap slots", n, timeline, TaskKind::Cache,
+                      const TimelineView& timeline, cudaStream_t stream) {
+  parallelForCuda("cache: unmap slots", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { unmapSlot(cache, slots[i]); });
 }
 

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <memory>
 
+#include "gvdp/base/gpu.h"
+
 namespace gvdp::detail {
 
 class FrameClock {
@@ -26,6 +28,7 @@ class CpuFrameClock final : public FrameClock {
   std::chrono::steady_clock::time_point t0_;
 };
 
-std::unique_ptr<FrameClock> makeGpuFrameClock();  // CUDA builds only
+// CUDA events on `stream` (CUDA builds only).
+std::unique_ptr<FrameClock> makeGpuFrameClock(GpuStream stream);
 
 }  // namespace gvdp::detail

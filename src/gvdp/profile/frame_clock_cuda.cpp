@@ -6,20 +6,22 @@ namespace {
 
 class GpuFrameClock final : public FrameClock {
  public:
-  void start() override { timer_.start(); }
+  explicit GpuFrameClock(cudaStream_t stream) : stream_(stream) {}
+  void start() override { timer_.start(stream_); }
   double stopMs() override {
-    timer_.stop();
+    timer_.stop(stream_);
     return timer_.ms();
   }
 
  private:
+  cudaStream_t stream_;
   GpuTimer timer_;
 };
 
 }  // namespace
 
-std::unique_ptr<FrameClock> makeGpuFrameClock() {
-  return std::make_unique<GpuFrameClock>();
+std::unique_ptr<FrameClock> makeGpuFrameClock(GpuStream stream) {
+  return std::make_unique<GpuFrameClock>(stream);
 }
 
 }  // namespace gvdp::detail

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "gvdp/base/gpu.h"
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp::detail {
@@ -26,6 +27,7 @@ class FrameTimeline {
 constexpr uint32_t TIMELINE_CAPACITY = 1u << 22;  // records per frame (about 100 MB on the GPU)
 
 std::unique_ptr<FrameTimeline> makeCpuFrameTimeline();
-std::unique_ptr<FrameTimeline> makeGpuFrameTimeline();  // CUDA builds only
+// Records kernels write on the device, read back on `stream` (CUDA builds only).
+std::unique_ptr<FrameTimeline> makeGpuFrameTimeline(GpuStream stream);
 
 }  // namespace gvdp::detail

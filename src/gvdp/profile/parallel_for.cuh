@@ -1,6 +1,6 @@
-// The GPU twin of parallelFor (base/parallel.h): fn(i) for every i in [0, n), one launch of a
-// grid-stride kernel sized by occupancy (at most the blocks resident on the device at once),
-// under an NVTX range and recorded on the timeline as `kind`, one record per block. For
+// The GPU twin of parallelFor (base/parallel.h): fn(i) for every i in [0, n), one launch on
+// `stream` of a grid-stride kernel sized by occupancy (at most the blocks resident on the device at
+// once), under an NVTX range and recorded on the timeline as `kind`, one record per block. For
 // element-wise work only: lanes past n leave the loop, so fn must not need the whole warp.
 #pragma once
 
@@ -19,14 +19,14 @@ __global__ void parallelForKernel(uint32_t n, TimelineView timeline, TaskKind ki
 }
 
 template <class Fn>
-void parallelForCuda(const char* name, uint32_t n, const TimelineView& timeline, TaskKind kind,
-                     Fn fn) {
+void parallelForCuda(const char* name, cudaStream_t stream, uint32_t n,
+                     const TimelineView& timeline, TaskKind kind, Fn fn) {
   constexpr int BLOCK = 256;
   if (n == 0) return;
   NvtxRange range(name);
   static const int resident = residentBlocks(parallelForKernel<Fn>, BLOCK);
   uint32_t blocks = std::min<uint32_t>((n + BLOCK - 1) / BLOCK, static_cast<uint32_t>(resident));
-  parallelForKernel<<<blocks, BLOCK>>>(n, timeline, kind, fn);
+  parallelForKernel<<<blocks, BLOCK, 0, stream>>>(n, timeline, kind, fn);
 }
 
 }  // namespace gvdp::detail

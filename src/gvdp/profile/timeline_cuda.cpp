@@ -6,7 +6,7 @@ namespace {
 
 class GpuFrameTimeline final : public FrameTimeline {
  public:
-  GpuFrameTimeline() : timeline_(TIMELINE_CAPACITY) {
+  explicit GpuFrameTimeline(cudaStream_t stream) : timeline_(TIMELINE_CAPACITY, stream) {
     int device = 0;
     GVDP_CUDA_CHECK(cudaGetDevice(&device));
     GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&lanes_, cudaDevAttrMultiProcessorCount, device));
@@ -26,8 +26,8 @@ class GpuFrameTimeline final : public FrameTimeline {
 
 }  // namespace
 
-std::unique_ptr<FrameTimeline> makeGpuFrameTimeline() {
-  return std::make_unique<GpuFrameTimeline>();
+std::unique_ptr<FrameTimeline> makeGpuFrameTimeline(GpuStream stream) {
+  return std::make_unique<GpuFrameTimeline>(stream);
 }
 
 }  // namespace gvdp::detail

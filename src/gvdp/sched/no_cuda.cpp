@@ -30,11 +30,11 @@ std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions&, ProducerKernel
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-std::unique_ptr<FrameClock> makeGpuFrameClock() {
+std::unique_ptr<FrameClock> makeGpuFrameClock(GpuStream) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 
-std::unique_ptr<FrameTimeline> makeGpuFrameTimeline() {
+std::unique_ptr<FrameTimeline> makeGpuFrameTimeline(GpuStream) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

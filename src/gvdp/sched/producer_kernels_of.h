@@ -41,33 +41,35 @@ class CudaProducerKernelsOf final : public CudaProducerKernels {
  public:
   explicit CudaProducerKernelsOf(const P& producer) : p_(producer) {}
 
-  void launchDirect(const FrameSetup& frame, uint32_t* image) const override {
-    launchDirectKernel(frame, p_, image);
+  void launchDirect(const FrameSetup& frame, uint32_t* image, cudaStream_t stream) const override {
+    launchDirectKernel(frame, p_, image, stream);
   }
   void launchProduce(const FrameSetup& frame, const CacheView& cache, const BrickPool& pool,
-                     uint32_t requests) const override {
-    launchProduceKernel(frame, cache, pool, p_, requests);
+                     uint32_t requests, cudaStream_t stream) const override {
+    launchProduceKernel(frame, cache, pool, p_, requests, stream);
   }
   void captureGraphProduce(const GraphFrame* frame, GraphLoop* loop,
                            cudaStream_t stream) const override {
     captureGraphProduceKernel(frame, loop, p_, stream);
   }
   int ptWorkerBlocks() const override { return ptWorkerBlocksOf<P>(); }
-  void launchPtFrame(const PtContext& ctx, const BrickPool& pool, int blocks) const override {
-    launchPtWorkers(ctx, pool, p_, blocks);
+  void launchPtFrame(const PtContext& ctx, const BrickPool& pool, int blocks,
+                     cudaStream_t stream) const override {
+    launchPtWorkers(ctx, pool, p_, blocks, stream);
   }
 #if GVDP_PRODUCER_DP
   bool hasDp() const override {
     return true;
   }
-  void launchDpFrame(const DpContext* deviceContext, const FrameSetup& frame) const override {
-    launchDpRoot(deviceContext, frame, p_);
+  void launchDpFrame(const DpContext* deviceContext, const FrameSetup& frame,
+                     cudaStream_t stream) const override {
+    launchDpRoot(deviceContext, frame, p_, stream);
   }
 #else
   bool hasDp() const override {
     return false;
   }
-  void launchDpFrame(const DpContext*, const FrameSetup&) const override {}
+  void launchDpFrame(const DpContext*, const FrameSetup&, cudaStream_t) const override {}
 #endif
 
  private:

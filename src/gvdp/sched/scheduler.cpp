@@ -48,8 +48,9 @@ void requireBackend(Backend backend) {
 Scheduler::Scheduler(Backend backend, ProducerKernelsPtr producer)
     : producer_(std::move(producer)),
       backend_(backend),
+      stream_(backend == Backend::Cuda ? createGpuStream() : nullptr),
       clock_(backend == Backend::Cuda
-                 ? makeGpuFrameClock()
+                 ? makeGpuFrameClock(stream_.get())
                  : std::unique_ptr<FrameClock>(std::make_unique<CpuFrameClock>())) {}
 
 Scheduler::~Scheduler() = default;
@@ -121,7 +122,7 @@ std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer) {
   std::unique_ptr<Scheduler> s = makeBare(options, std::move(producer));
   if (options.timeline)
-    s->recordTimeline(options.backend == Backend::Cuda ? makeGpuFrameTimeline()
+    s->recordTimeline(options.backend == Backend::Cuda ? makeGpuFrameTimeline(s->stream())
                                                        : makeCpuFrameTimeline());
   return s;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "gvdp/base/gpu.h"
 #include "gvdp/base/image.h"
 #include "gvdp/cache/cache_host.h"
 #include "gvdp/profile/frame_clock.h"
@@ -89,6 +90,8 @@ class Scheduler {
   FrameStats render(const FrameSetup& frame, Image* out);
   // The last frame's RGBA8 pixels in device memory (CUDA schedulers), else null.
   virtual const uint32_t* deviceImage() const { return nullptr; }
+  // The stream all of the scheduler's GPU work runs on (cuda backend), else null.
+  GpuStream stream() const { return stream_.get(); }
   // Bytes of every structure the scheduler holds (after the last frame).
   virtual MemoryReport memory() const = 0;
 
@@ -103,6 +106,7 @@ class Scheduler {
  private:
   ProducerKernelsPtr producer_;
   Backend backend_;
+  OwnedGpuStream stream_;
   bool hostImage_ = true;
   std::unique_ptr<FrameClock> clock_;
   std::unique_ptr<FrameTimeline> timeline_;

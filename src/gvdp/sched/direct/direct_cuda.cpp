@@ -18,14 +18,13 @@ class DirectCuda final : public Scheduler {
     if (image_.size() != n) image_ = DeviceBuffer<uint32_t>(n);
   }
   void renderFrame(const FrameSetup& frame, Image&, FrameStats&) override {
-    cudaProducer().launchDirect(frame, image_.data());
+    cudaProducer().launchDirect(frame, image_.data(), stream());
     GVDP_CUDA_CHECK(cudaGetLastError());
   }
   void finishFrame(const FrameSetup& frame, Image& out, FrameStats&) override {
     if (!hostImageWanted()) return;
     out = Image(frame.width, frame.height);
-    GVDP_CUDA_CHECK(
-        cudaMemcpy(out.pixels.data(), image_.data(), image_.bytes(), cudaMemcpyDeviceToHost));
+    readDevice(out.pixels.data(), image_.data(), image_.bytes(), stream());
   }
 
   DeviceBuffer<uint32_t> image_;

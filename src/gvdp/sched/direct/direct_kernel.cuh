@@ -17,10 +17,11 @@ __global__ void directKernel(FrameSetup frame, P producer, uint32_t* image) {
 }
 
 template <class P>
-void launchDirectKernel(const FrameSetup& frame, const P& producer, uint32_t* image) {
+void launchDirectKernel(const FrameSetup& frame, const P& producer, uint32_t* image,
+                        cudaStream_t stream) {
   dim3 block(8, 8);
   dim3 grid((frame.width + 7) / 8, (frame.height + 7) / 8);
-  directKernel<<<grid, block>>>(frame, producer, image);
+  directKernel<<<grid, block, 0, stream>>>(frame, producer, image);
 }
 
 }  // namespace gvdp::detail

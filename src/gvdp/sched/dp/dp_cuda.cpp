@@ -44,22 +44,20 @@ class DpCuda final : public SpFrameCuda {
   void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("dp frame");
     cache_.beginFrame(f);
-    GVDP_CUDA_CHECK(cudaMemset(locks_.data(), 0, locks_.bytes()));  // RAY_FREE
-    GVDP_CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()));
-    GVDP_CUDA_CHECK(
-        cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));  // fresh rays
+    fillDevice(locks_.data(), 0, locks_.bytes(), stream());  // RAY_FREE
+    fillDevice(counters_.data(), 0, counters_.bytes(), stream());
+    fillDevice(buffers_.payload.data(), 0, buffers_.payload.bytes(), stream());  // fresh rays
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
     DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data(), cache_.pool()};
-    GVDP_CUDA_CHECK(cudaMemcpy(context_.data(), &ctx, sizeof ctx, cudaMemcpyHostToDevice));
+    writeDevice(context_.data(), &ctx, sizeof ctx, stream());
     {
       NvtxRange schedule("dp device schedule");
-      cudaProducer().launchDpFrame(context_.data(), f);
-      GVDP_CUDA_CHECK(cudaDeviceSynchronize());
+      cudaProducer().launchDpFrame(context_.data(), f, stream());
+      GVDP_CUDA_CHECK(cudaGetLastError());
     }
-    GVDP_CUDA_CHECK(cudaGetLastError());
-    sweep(f, stats);
-    stats.unfinishedPixels = resolveCuda(f, buffers_);
+    sweep(f, stats);  // after the whole tree of device launches: the stream orders it
+    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }
 
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
@@ -71,7 +69,7 @@ class DpCuda final : public SpFrameCuda {
     }
     SpFrameCuda::finishFrame(f, out, stats);
     uint32_t c[DP_COUNTER_COUNT];
-    GVDP_CUDA_CHECK(cudaMemcpy(c, counters_.data(), sizeof c, cudaMemcpyDeviceToHost));
+    readDevice(c, counters_.data(), sizeof c, stream());
     stats.launches = c[DP_PRODUCTIONS] + c[DP_RELAUNCHES];
     stats.launchFailures = c[DP_LAUNCH_FAILURES];
     stats.deferred = c[DP_DEFERRED];
@@ -82,13 +80,14 @@ class DpCuda final : public SpFrameCuda {
   // finished by the sp loop; with the race-free relaunch there are none otherwise.
   void sweep(const FrameSetup& f, FrameStats& stats) {
     NvtxRange range("dp sweep");
-    GVDP_CUDA_CHECK(cudaMemset(buffers_.counters.data(), 0, 4));
+    fillDevice(buffers_.counters.data(), 0, 4, stream());
     launchCompactUnfinished(f, buffers_.payload.data(), buffers_.live.data(),
-                            buffers_.counters.data());
+                            buffers_.counters.data(), stream());
     uint32_t unfinished = 0;
-    GVDP_CUDA_CHECK(cudaMemcpy(&unfinished, buffers_.counters.data(), 4, cudaMemcpyDeviceToHost));
+    readDevice(&unfinished, buffers_.counters.data(), 4, stream());
     stats.sweptPixels = unfinished;
-    if (unfinished) runSpLoopCuda(f, cudaProducer(), cache_, buffers_, unfinished, false, stats);
+    if (unfinished)
+      runSpLoopCuda(f, cudaProducer(), cache_, buffers_, unfinished, false, stats, stream());
   }
 
   uint32_t pendingLaunches_;

@@ -98,8 +98,9 @@ __global__ void __launch_bounds__(DP_TILE_W* DP_TILE_H)
 // The root render grid (32x16 tiles) over the context in device memory; the whole tree of
 // device launches has finished when the stream reaches the next command.
 template <class P>
-void launchDpRoot(const DpContext* deviceContext, const FrameSetup& frame, const P& producer) {
-  dpRootKernel<<<dpTileCount(frame), DP_TILE_W * DP_TILE_H>>>(deviceContext, producer);
+void launchDpRoot(const DpContext* deviceContext, const FrameSetup& frame, const P& producer,
+                  cudaStream_t stream) {
+  dpRootKernel<<<dpTileCount(frame), DP_TILE_W * DP_TILE_H, 0, stream>>>(deviceContext, producer);
 }
 
 }  // namespace gvdp::detail

@@ -22,15 +22,15 @@ class GraphCuda final : public SpFrameCuda {
     cache_.beginFrame(f);
     GraphFrame g{f, cache_.view(), cache_.pool(), buffers_.payload.data()};
     GraphLoop loop{buffers_.live.data(), buffers_.next.data(), 0, 0, 0, 0, GRAPH_DONE, 0, 0};
-    GVDP_CUDA_CHECK(cudaMemcpyAsync(frame_.data(), &g, sizeof g, cudaMemcpyHostToDevice));
-    GVDP_CUDA_CHECK(cudaMemcpyAsync(loop_.data(), &loop, sizeof loop, cudaMemcpyHostToDevice));
+    writeDevice(frame_.data(), &g, sizeof g, stream());
+    writeDevice(loop_.data(), &loop, sizeof loop, stream());
     do {  // once, unless the host drives the loop
-      GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, nullptr));
-      GVDP_CUDA_CHECK(cudaMemcpy(&loop, loop_.data(), sizeof loop, cudaMemcpyDeviceToHost));
+      GVDP_CUDA_CHECK(cudaGraphLaunch(exec_, stream()));
+      readDevice(&loop, loop_.data(), sizeof loop, stream());
     } while (driver_ == GraphDriver::Host && !loop.stop);
     stats.passes = static_cast<int>(loop.passes);
     if (loop.exit != GRAPH_DONE) finishOnHost(f, loop, stats);
-    stats.unfinishedPixels = resolveCuda(f, buffers_);
+    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }
 
   // What sp does between passes when the device cannot: refill the free slot list (or degrade
@@ -39,7 +39,7 @@ class GraphCuda final : public SpFrameCuda {
     if (loop.live != buffers_.live.data()) std::swap(buffers_.live, buffers_.next);
     if (loop.exit == GRAPH_FAILED && cache_.refill() == 0) cache_.setDegraded(true);
     if (stats.passes >= SP_MAX_PASSES) cache_.setDegraded(true);
-    runSpLoopCuda(f, cudaProducer(), cache_, buffers_, loop.liveCount, false, stats);
+    runSpLoopCuda(f, cudaProducer(), cache_, buffers_, loop.liveCount, false, stats, stream());
   }
 
   DeviceBuffer<GraphFrame> frame_;

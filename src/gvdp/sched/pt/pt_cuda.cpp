@@ -34,16 +34,15 @@ class PtCuda final : public SpFrameCuda {
     PtContext ctx = prepare(f);
     {
       NvtxRange kernel("pt persistent kernel");
-      cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_);
+      cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_, stream());
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
-    stats.unfinishedPixels = resolveCuda(f, buffers_);
+    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
     SpFrameCuda::finishFrame(f, out, stats);
     std::vector<uint32_t> c(counters_.size());
-    GVDP_CUDA_CHECK(
-        cudaMemcpy(c.data(), counters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost));
+    readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
     stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
     stats.degraded = stats.degraded || stats.cache.failed != 0;
@@ -64,17 +63,16 @@ class PtCuda final : public SpFrameCuda {
   // The frame's queues: empty rings, every task id free, every ray fresh and live.
   PtContext prepare(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
-    GVDP_CUDA_CHECK(cudaMemset(buffers_.payload.data(), 0, buffers_.payload.bytes()));
+    fillDevice(buffers_.payload.data(), 0, buffers_.payload.bytes(), stream());
     std::vector<uint32_t> c(counters_.size());
     initialPtCounters(c.data(), n, ids_);
-    GVDP_CUDA_CHECK(
-        cudaMemcpy(counters_.data(), c.data(), counters_.bytes(), cudaMemcpyHostToDevice));
+    writeDevice(counters_.data(), c.data(), counters_.bytes(), stream());
     PtContext ctx = makePtContext(
         f, cache_.view(), buffers_.payload.data(),
         {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
          static_cast<uint32_t>(raySlots_.size()), static_cast<uint32_t>(taskSlots_.size()),
          taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data()});
-    launchPtRingsInit(ctx, ids_);
+    launchPtRingsInit(ctx, ids_, stream());
     return ctx;
   }
 

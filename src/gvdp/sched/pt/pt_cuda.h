@@ -2,11 +2,13 @@
 // through CudaProducerKernels (pt_worker.cuh).
 #pragma once
 
+#include <cuda_runtime_api.h>
+
 #include "gvdp/sched/pt/pt_body.h"
 
 namespace gvdp::detail {
 
 // Empties the ray and task rings and fills the free task-id ring with ids 0..ids-1.
-void launchPtRingsInit(const PtContext& ctx, uint32_t ids);
+void launchPtRingsInit(const PtContext& ctx, uint32_t ids, cudaStream_t stream);
 
 }  // namespace gvdp::detail

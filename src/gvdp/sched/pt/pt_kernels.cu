@@ -9,17 +9,17 @@ __global__ void ringInitKernel(Ring ring, uint32_t filled) {
   if (i <= ring.mask) ring.slots[i] = ringInitialSlot(i, filled);
 }
 
-void initRing(const Ring& ring, uint32_t filled) {
+void initRing(const Ring& ring, uint32_t filled, cudaStream_t stream) {
   uint32_t n = ring.mask + 1;
-  ringInitKernel<<<(n + 255) / 256, 256>>>(ring, filled);
+  ringInitKernel<<<(n + 255) / 256, 256, 0, stream>>>(ring, filled);
 }
 
 }  // namespace
 
-void launchPtRingsInit(const PtContext& ctx, uint32_t ids) {
-  initRing(ctx.rays, 0);
-  initRing(ctx.tasks, 0);
-  initRing(ctx.freeIds, ids);
+void launchPtRingsInit(const PtContext& ctx, uint32_t ids, cudaStream_t stream) {
+  initRing(ctx.rays, 0, stream);
+  initRing(ctx.tasks, 0, stream);
+  initRing(ctx.freeIds, ids, stream);
 }
 
 }  // namespace gvdp::detail

@@ -315,8 +315,9 @@ int ptWorkerBlocksOf() {
 }
 
 template <class P>
-void launchPtWorkers(const PtContext& ctx, const BrickPool& pool, const P& producer, int blocks) {
-  ptWorkerKernel<<<blocks, PT_BLOCK>>>(ctx, pool, producer);
+void launchPtWorkers(const PtContext& ctx, const BrickPool& pool, const P& producer, int blocks,
+                     cudaStream_t stream) {
+  ptWorkerKernel<<<blocks, PT_BLOCK, 0, stream>>>(ctx, pool, producer);
 }
 
 }  // namespace gvdp::detail

@@ -14,52 +14,53 @@ struct SpStepsCuda {
   const CudaProducerKernels& producer;
   BrickCacheCuda& cache_;
   SpBuffersCuda& b;
+  cudaStream_t stream;
 
   BrickCacheCuda& cache() { return cache_; }
 
   void produce(uint32_t requests) {
     NvtxRange range("production pass");
-    producer.launchProduce(f, cache_.view(), cache_.pool(), requests);
+    producer.launchProduce(f, cache_.view(), cache_.pool(), requests, stream);
   }
 
   uint32_t renderPass(bool tiled, uint32_t liveCount) {
     NvtxRange range("render pass");
-    GVDP_CUDA_CHECK(cudaMemset(b.counters.data(), 0, 4));
+    fillDevice(b.counters.data(), 0, 4, stream);
     if (tiled) {
       launchFirstRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.next.data(),
-                            b.counters.data());
+                            b.counters.data(), stream);
     } else {
       launchRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.live.data(), liveCount,
-                       b.next.data(), b.counters.data());
+                       b.next.data(), b.counters.data(), stream);
     }
     GVDP_CUDA_CHECK(cudaGetLastError());
     std::swap(b.live, b.next);
     uint32_t stopped = 0;
-    GVDP_CUDA_CHECK(cudaMemcpy(&stopped, b.counters.data(), 4, cudaMemcpyDeviceToHost));
+    readDevice(&stopped, b.counters.data(), 4, stream);
     return stopped;
   }
 };
 }  // namespace
 
 void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, BrickCacheCuda& cache,
-                   SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats) {
-  SpStepsCuda steps{f, producer, cache, b};
+                   SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats,
+                   cudaStream_t stream) {
+  SpStepsCuda steps{f, producer, cache, b, stream};
   runSpLoop(steps, liveCount, tiled, stats);
 }
 
-int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b) {
-  GVDP_CUDA_CHECK(cudaMemset(b.counters.data() + 1, 0, 4));
-  launchResolve(f, b.payload.data(), b.image.data(), b.counters.data());
+int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b, cudaStream_t stream) {
+  fillDevice(b.counters.data() + 1, 0, 4, stream);
+  launchResolve(f, b.payload.data(), b.image.data(), b.counters.data(), stream);
   GVDP_CUDA_CHECK(cudaGetLastError());
   uint32_t unfinished = 0;
-  GVDP_CUDA_CHECK(cudaMemcpy(&unfinished, b.counters.data() + 1, 4, cudaMemcpyDeviceToHost));
+  readDevice(&unfinished, b.counters.data() + 1, 4, stream);
   return unfinished;
 }
 
-void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out) {
+void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out, cudaStream_t stream) {
   out = Image(f.width, f.height);
-  GVDP_CUDA_CHECK(
-      cudaMemcpy(out.pixels.data(), b.image.data(), b.image.bytes(), cudaMemcpyDeviceToHost));
+  readDevice(out.pixels.data(), b.image.data(), b.image.bytes(), stream);
 }
 
 MemoryReport SpFrameCuda::memory() const {
@@ -73,7 +74,7 @@ void SpFrameCuda::prepareFrame(const FrameSetup& f) {
 }
 
 void SpFrameCuda::finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) {
-  if (hostImageWanted()) downloadImage(f, buffers_, out);
+  if (hostImageWanted()) downloadImage(f, buffers_, out, stream());
   addCacheStats(cache_, stats);
 }
 
@@ -87,8 +88,8 @@ class SpCuda final : public SpFrameCuda {
   void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("sp frame");
     cache_.beginFrame(f);
-    runSpLoopCuda(f, cudaProducer(), cache_, buffers_, 0, true, stats);
-    stats.unfinishedPixels = resolveCuda(f, buffers_);
+    runSpLoopCuda(f, cudaProducer(), cache_, buffers_, 0, true, stats, stream());
+    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }
 };
 

@@ -47,29 +47,30 @@ __global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, u
 }  // namespace
 
 void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                           RayState* payload, uint32_t* next, uint32_t* passCounters) {
+                           RayState* payload, uint32_t* next, uint32_t* passCounters,
+                           cudaStream_t stream) {
   unsigned items = static_cast<unsigned>(tileCount(f) * TILE * TILE);
-  firstRenderPassKernel<<<(items + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK>>>(
+  firstRenderPassKernel<<<(items + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK, 0, stream>>>(
       f, cache, pool, payload, next, passCounters);
 }
 
 void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                       RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
-                      uint32_t* passCounters) {
-  renderPassKernel<<<(liveCount + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK>>>(
+                      uint32_t* passCounters, cudaStream_t stream) {
+  renderPassKernel<<<(liveCount + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK, 0, stream>>>(
       f, cache, pool, payload, live, liveCount, next, passCounters);
 }
 
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
-                             uint32_t* passCounters) {
+                             uint32_t* passCounters, cudaStream_t stream) {
   unsigned n = static_cast<unsigned>(f.pixelCount());
-  compactUnfinishedKernel<<<(n + 255) / 256, 256>>>(f, payload, live, passCounters);
+  compactUnfinishedKernel<<<(n + 255) / 256, 256, 0, stream>>>(f, payload, live, passCounters);
 }
 
 void launchResolve(const FrameSetup& f, const RayState* payload, uint32_t* image,
-                   uint32_t* passCounters) {
-  parallelForCuda("resolve", static_cast<uint32_t>(f.pixelCount()), f.timeline, TaskKind::Resolve,
-                  [=] __device__(uint32_t pixel) {
+                   uint32_t* passCounters, cudaStream_t stream) {
+  parallelForCuda("resolve", stream, static_cast<uint32_t>(f.pixelCount()), f.timeline,
+                  TaskKind::Resolve, [=] __device__(uint32_t pixel) {
                     bool unfinished = false;
                     image[pixel] = resolveRay(f, payload, static_cast<int>(pixel), &unfinished);
                     if (unfinished) atomicAdd(&passCounters[1], 1u);

@@ -27,8 +27,10 @@ struct SpBuffersCuda {
 
 // With `tiled`, the first pass starts every pixel afresh in 8x8 tiles; otherwise it resumes the
 // `liveCount` rays listed in b.live. Queued bricks are produced first. Adds to stats.passes.
+// Everything runs on `stream`.
 void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, BrickCacheCuda& cache,
-                   SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats);
+                   SpBuffersCuda& b, uint32_t liveCount, bool tiled, FrameStats& stats,
+                   cudaStream_t stream);
 
 // The frame of every cached CUDA scheduler around the sp loop's buffers (sp, graph; dp and pt
 // add their own): the brick cache and the buffers sized before the clock, the image downloaded
@@ -36,7 +38,7 @@ void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, Bri
 class SpFrameCuda : public Scheduler {
  public:
   SpFrameCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
-      : Scheduler(Backend::Cuda, std::move(producer)), cache_(poolBricksOf(o)) {}
+      : Scheduler(Backend::Cuda, std::move(producer)), cache_(poolBricksOf(o), stream()) {}
   MemoryReport memory() const override;
   const uint32_t* deviceImage() const override { return buffers_.image.data(); }
 
@@ -49,7 +51,7 @@ class SpFrameCuda : public Scheduler {
 };
 
 // Resolves to b.image; returns the unfinished pixels.
-int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b);
-void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out);
+int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b, cudaStream_t stream);
+void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out, cudaStream_t stream);
 
 }  // namespace gvdp::detail

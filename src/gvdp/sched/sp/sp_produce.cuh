@@ -15,8 +15,8 @@ __global__ void __launch_bounds__(PRODUCE_BLOCK)
 
 template <class P>
 void launchProduceKernel(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                         const P& producer, uint32_t requests) {
-  if (requests) produceKernel<<<requests, PRODUCE_BLOCK>>>(f, cache, pool, producer);
+                         const P& producer, uint32_t requests, cudaStream_t stream) {
+  if (requests) produceKernel<<<requests, PRODUCE_BLOCK, 0, stream>>>(f, cache, pool, producer);
 }
 
 }  // namespace gvdp::detail
