@@ -162,3 +162,39 @@ TEST(Registry, FindsScenesByNameAndRejectsUnknownOnes) {
 }
 
 }  // namespace gvdp::detail
+
+namespace gvdp::detail {
+namespace {
+
+// The built-in box bounds are conservative: inside a box one clears, every voxel of that size
+// is flagged empty and transparent; each scene with a bound clears some boxes.
+template <class World>
+void expectConservativeBound(const World& world, double yLo, double yHi, const char* name) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> xz(-200.0, 200.0), y(yLo, yHi), unit(0.0, 1.0);
+  int cleared = 0;
+  for (int i = 0; i < 4000; ++i) {
+    int level = static_cast<int>(unit(rng) * 8.0);
+    float voxelSize = ldexpf(world.voxelSize0(), level);
+    double s = 11.0 * voxelSize * (1.0 + 3.0 * unit(rng));  // a brick's box and larger
+    Vec3d lo{xz(rng), y(rng), xz(rng)};
+    Vec3d hi{lo.x + s, lo.y + s, lo.z + s};
+    if (!world.emptyBox(lo, hi, voxelSize)) continue;
+    ++cleared;
+    for (int k = 0; k < 16; ++k) {
+      Vec3d p{lo.x + s * unit(rng), lo.y + s * unit(rng), lo.z + s * unit(rng)};
+      VoxelSample v = world.voxel(p, voxelSize);
+      ASSERT_TRUE(v.empty && v.rgba == 0u) << name << " box " << i << " point " << k;
+    }
+  }
+  EXPECT_GT(cleared, 100) << name << ": the bound should clear some boxes";
+}
+
+TEST(BoxBound, BuiltinBoundsAreConservative) {
+  expectConservativeBound(PerlinWorld{findScene("perlin").world.finest, 1}, -10.0, 80.0, "perlin");
+  expectConservativeBound(FbmWorld{findScene("fbm").world.finest, 1}, -10.0, 150.0, "fbm");
+  expectConservativeBound(ForestWorld{findScene("forest").world.finest, 1}, 0.0, 60.0, "forest");
+}
+
+}  // namespace
+}  // namespace gvdp::detail

@@ -34,6 +34,14 @@ GVDP_HD GVDP_INLINE uint32_t atomicAdd32(uint32_t* p, uint32_t v) {
 #endif
 }
 
+GVDP_HD GVDP_INLINE void atomicAdd64(uint64_t* p, uint64_t v) {
+#if GVDP_IS_GPU_CODE
+  atomicAdd(reinterpret_cast<unsigned long long*>(p), static_cast<unsigned long long>(v));
+#else
+  std::atomic_ref<uint64_t>(*p).fetch_add(v, std::memory_order_relaxed);
+#endif
+}
+
 GVDP_HD GVDP_INLINE uint32_t atomicExch32(uint32_t* p, uint32_t v) {
 #if GVDP_IS_GPU_CODE
   return atomicExch(p, v);

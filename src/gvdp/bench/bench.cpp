@@ -43,7 +43,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.scene = scene;
   c.movement = std::string(movementName(m));
   c.scheduler = std::string(schedulerName(k));
-  uint64_t bricks = 0;
+  uint64_t bricks = 0, samples = 0, lookups = 0, skips = 0;
   for (int f = 0; f < s.frames; ++f) {
     auto t0 = std::chrono::steady_clock::now();
     FrameStats st = renderer->render(poseOf(s, f), image);
@@ -53,6 +53,9 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     c.frameMs.push_back(st.ms);
     c.frameWallMs.push_back(wall);
     bricks += st.cache.produced;
+    samples += st.cache.samples;
+    lookups += st.cache.lookups;
+    skips += st.cache.skips;
     c.unfinishedPixels += st.unfinishedPixels;
   }
   // The floor: the first measured frames again, from the cache the path has filled.
@@ -67,6 +70,10 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.medianWallMs = frameTimeStats(c.frameWallMs).medianMs;
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
+  double rays = static_cast<double>(c.frameMs.size()) * s.width * s.height;
+  c.samplesPerRay = static_cast<double>(samples) / rays;
+  c.lookupsPerRay = static_cast<double>(lookups) / rays;
+  c.skipsPerRay = static_cast<double>(skips) / rays;
   c.memory = renderer->memory();
   for (const MemoryItem& item : c.memory) c.memoryBytes += item.bytes;
   return c;
@@ -108,9 +115,11 @@ BenchResults runBench(const BenchOptions& o,
         r.cells.push_back(runCell(o, scene, m, k));
         const BenchCell& c = r.cells.back();
         char line[256];
-        std::snprintf(line, sizeof line, "%s %s %s: %.1f FPS (1%% low %.1f), %.0f bricks/frame",
+        std::snprintf(line, sizeof line,
+                      "%s %s %s: %.1f FPS (1%% low %.1f), %.0f bricks/frame, per ray %.1f samples "
+                      "%.1f lookups %.1f skips",
                       c.scene.c_str(), c.movement.c_str(), c.scheduler.c_str(), c.avgFps, c.low1Fps,
-                      c.bricksPerFrame);
+                      c.bricksPerFrame, c.samplesPerRay, c.lookupsPerRay, c.skipsPerRay);
         progress(++done, total, line);
       }
   // Speed-up against sp in the same (scene, movement).
@@ -145,6 +154,9 @@ std::string benchJson(const BenchResults& r) {
                      {"unfinished_pixels", c.unfinishedPixels},
                      {"speedup_vs_sp", c.speedupVsSp},
                      {"floor_ms", c.floorMs},
+                     {"samples_per_ray", c.samplesPerRay},
+                     {"lookups_per_ray", c.lookupsPerRay},
+                     {"skips_per_ray", c.skipsPerRay},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
@@ -166,11 +178,13 @@ std::string benchJson(const BenchResults& r) {
 std::string benchCsv(const BenchResults& r) {
   std::ostringstream s;
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
-       "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes\n";
+       "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
+       "skips_per_ray\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
-      << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << '\n';
+      << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << ',' << c.samplesPerRay
+      << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << '\n';
   return s.str();
 }
 

@@ -25,6 +25,8 @@ struct BenchOptions {
 struct BenchCell {
   std::string scene, movement, scheduler;
   double avgFps, low1Fps, medianMs, p99Ms, medianWallMs, bricksPerFrame, floorMs, speedupVsSp = 0;
+  // Per ray and frame, over the measured frames: samples, brick lookups, empty-space skips.
+  double samplesPerRay, lookupsPerRay, skipsPerRay;
   int64_t unfinishedPixels;
   uint64_t memoryBytes;
   std::vector<double> frameMs;      // CUDA events (GPU) or wall clock (CPU), per measured frame

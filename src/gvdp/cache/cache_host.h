@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@ struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
   uint64_t resident = 0;  // slots holding a brick at the end of the frame
   uint32_t refills = 0;   // free-list refills after the frame-start one
+  // What the rays did (MarchCounter): samples, brick lookups, lookups that skipped empty space.
+  uint64_t samples = 0, lookups = 0, skips = 0;
 };
 
 struct MemoryItem {
@@ -34,6 +37,11 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.requested = s.produced + s.empty + s.failed;  // every request ends in one of the three
   s.resident = resident;
   s.refills = refills;
+  uint64_t march[MARCH_COUNTER_COUNT];
+  std::memcpy(march, counters + COUNTER_MARCH, sizeof march);
+  s.samples = march[MARCH_SAMPLES];
+  s.lookups = march[MARCH_LOOKUPS];
+  s.skips = march[MARCH_SKIPS];
   return s;
 }
 

@@ -17,8 +17,14 @@ enum CacheCounter : int {
   COUNTER_EMPTY,      // bricks found empty
   COUNTER_FAILED,     // productions without a free slot (entry back to MISSING)
   COUNTER_EVICTED,    // resident bricks unmapped (LRU or leaving the clipmap)
-  COUNTER_COUNT
+  COUNTER_MARCH,      // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
+  COUNTER_COUNT = COUNTER_MARCH + 2 * 3
 };
+
+// What rays did with the cache in a frame (CacheStats): samples composited, brick lookups (one
+// per brick entered: a resident brick's samples share one) and lookups that skipped empty space.
+enum MarchCounter : int { MARCH_SAMPLES, MARCH_LOOKUPS, MARCH_SKIPS, MARCH_COUNTER_COUNT };
+static_assert(COUNTER_MARCH % 2 == 0 && COUNTER_COUNT == COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT);
 
 struct CacheView {
   Clipmap clipmap;
@@ -34,6 +40,10 @@ struct CacheView {
   uint32_t degraded;          // nonzero: no production; rays fall back to coarser levels
   uint32_t degradeOnFailure;  // nonzero: a failed production degrades the frame (dp, pt)
   float voxelSize0;
+
+  GVDP_HD uint64_t* marchCounters() const {
+    return reinterpret_cast<uint64_t*>(counters + COUNTER_MARCH);
+  }
 };
 
 }  // namespace gvdp::detail

@@ -23,6 +23,25 @@ struct QueueRequest {
   }
 };
 
+// Adds a ray's march counts to the frame's (MarchCounter): on the GPU one atomic per counter
+// and warp (the lanes that get here together), so counting costs the frame nothing visible.
+GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples, uint32_t lookups,
+                                        uint32_t skips) {
+  uint64_t* c = cache.marchCounters();
+#if GVDP_IS_GPU_CODE
+  unsigned mask = __activemask();
+  samples = __reduce_add_sync(mask, samples);
+  lookups = __reduce_add_sync(mask, lookups);
+  skips = __reduce_add_sync(mask, skips);
+  unsigned lane;
+  asm("mov.u32 %0, %%laneid;" : "=r"(lane));
+  if (lane != static_cast<unsigned>(__ffs(static_cast<int>(mask)) - 1)) return;
+#endif
+  atomicAdd64(&c[MARCH_SAMPLES], samples);
+  atomicAdd64(&c[MARCH_LOOKUPS], lookups);
+  atomicAdd64(&c[MARCH_SKIPS], skips);
+}
+
 // Pool provides: Vec4f sample(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
 // coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates.
 // OnMiss(cache, level, globalBrick, entry) runs when the entry was MISSING: it claims the brick
@@ -33,7 +52,8 @@ struct CachedAccess {
   const Pool& pool;
   const Lod& lod;
   OnMiss onMiss{};
-  uint32_t* stopEntry = nullptr;  // the entry the ray stopped on (dp re-reads it)
+  uint32_t* stopEntry = nullptr;                 // the entry the ray stopped on (dp re-reads it)
+  uint32_t samples = 0, lookups = 0, skips = 0;  // this march's (addCounts after it)
 
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
     Vec3i g = cache.clipmap.globalBrick(level, localBrick);
@@ -51,7 +71,17 @@ struct CachedAccess {
            (cache.degradeOnFailure && loadRelaxed32(&cache.counters[COUNTER_FAILED]));
   }
 
+  // The counts of the march so far into the frame's; once per march.
+  GVDP_HD void addCounts() const { addMarchCounts(cache, samples, lookups, skips); }
+
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
+    ++lookups;
+    BrickLookup b = find(level, brick);
+    skips += b.state == BrickState::Empty ? 1u : 0u;
+    return b;
+  }
+
+  GVDP_HD BrickLookup find(int level, Vec3i brick) {
     Vec3i g = cache.clipmap.globalBrick(level, brick);
     // The clipmap width covers every sample of a level (lod_test checks the formula); a brick
     // outside its window could only alias another one, so it is never read.
@@ -59,13 +89,13 @@ struct CachedAccess {
     uint32_t* entry = &cache.entries[cache.clipmap.entryIndex(level, g)];
     uint32_t e = loadAcquire32(entry);
     if (isSlot(e)) return resident(e, level, brick);
-    if (e == ENTRY_EMPTY) return {BrickState::Empty, 0u, level, brick};
+    if (e == ENTRY_EMPTY) return coarsestEmpty({BrickState::Empty, 0u, level, brick});
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
       a = {floorDiv(a.x, 2), floorDiv(a.y, 2), floorDiv(a.z, 2)};
       uint32_t ea = entryAt(up, a);
-      if (ea == ENTRY_EMPTY) return {BrickState::Empty, 0u, up, a};
+      if (ea == ENTRY_EMPTY) return coarsestEmpty({BrickState::Empty, 0u, up, a});
       if (isSlot(ea) && degraded()) return resident(ea, up, a);
     }
     if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
@@ -74,7 +104,21 @@ struct CachedAccess {
     return {BrickState::Stop, 0u, level, brick};
   }
 
-  GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) const {
+  // The largest known-empty box around an EMPTY brick: its chain of EMPTY ancestors, up to the
+  // first that is not EMPTY. Every sample of a level at or below the box's level inside it is
+  // zero (the producer's empty flag is conservative, world/producer.h), so the march may skip
+  // them all (it stops the skip at the end of the box's level: render/march.h).
+  GVDP_HD BrickLookup coarsestEmpty(BrickLookup b) const {
+    while (b.level + 1 < lod.levels) {
+      Vec3i a{floorDiv(b.brick.x, 2), floorDiv(b.brick.y, 2), floorDiv(b.brick.z, 2)};
+      if (entryAt(b.level + 1, a) != ENTRY_EMPTY) break;
+      b = {BrickState::Empty, 0u, b.level + 1, a};
+    }
+    return b;
+  }
+
+  GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
+    ++samples;
     Vec3f v = p / lod.voxelSize(b.level);
     Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
     return pool.sample(b.slot, origin, v);

@@ -48,12 +48,29 @@ GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& ke
   return producer.emptyBox(lo - Vec3d{vs, vs, vs}, hi + Vec3d{vs, vs, vs}, static_cast<float>(vs));
 }
 
+// A brick found EMPTY may lie in a larger box the producer's bound clears: its ancestors are
+// marked EMPTY, each exactly as its own production would have found it (brickBoundedEmpty), up
+// to the first the bound does not clear or that is not MISSING (claimed, produced or marked
+// already: one CAS each, so a brick in production keeps its state and its claimant loses
+// nothing). Rays then skip the whole box with one lookup (cached_access.h: coarsestEmpty).
+template <class P>
+GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const CacheView& cache,
+                                                   BrickKey key) {
+  while (key.level + 1 < cache.clipmap.levels) {
+    key = {{floorDiv(key.brick.x, 2), floorDiv(key.brick.y, 2), floorDiv(key.brick.z, 2)},
+           key.level + 1};
+    if (!cache.clipmap.inWindow(key.level, key.brick) || !brickBoundedEmpty(producer, key)) return;
+    uint32_t* entry = &cache.entries[cache.clipmap.entryIndex(key.level, key.brick)];
+    if (atomicCas32(entry, ENTRY_MISSING, ENTRY_EMPTY) != ENTRY_MISSING) return;
+  }
+}
+
 // Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with
 // PER * size >= BRICK_SAMPLE_COUNT): the leader takes a slot (none for an empty brick), each
 // member writes its samples staged(k, sample) to it and fences (device scope: other blocks
 // read the pool), and the leader publishes the entry once every member's writes are fenced.
-template <int PER, class Scope, class Staged>
-GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const CacheView& cache,
+template <int PER, class Scope, class P, class Staged>
+GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, const CacheView& cache,
                                      const BrickPool& pool, const BrickKey& key, bool empty,
                                      Staged staged) {
   uint32_t slot = 0;
@@ -70,7 +87,10 @@ GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const CacheView& cache,
 #endif
   }
   group.sync();
-  if (group.rank() == 0) publishBrick(cache, key, empty, slot);
+  if (group.rank() == 0) {
+    publishBrick(cache, key, empty, slot);
+    if (empty) markBoundedEmptyAncestors(producer, cache, key);
+  }
 }
 
 // Algorithm 2 whole, by a group that keeps its samples in registers: member r evaluates the
@@ -93,7 +113,7 @@ GVDP_HD GVDP_INLINE void produceBrick(const Scope& group, const P& producer, con
     }
   }
   empty = group.all(empty);
-  commitBrick<PER>(group, cache, pool, key, empty, [&](int k, int) { return values[k]; });
+  commitBrick<PER>(group, producer, cache, pool, key, empty, [&](int k, int) { return values[k]; });
 }
 
 }  // namespace gvdp::detail

@@ -80,9 +80,15 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
       b = access.lookup(s.level, brick);
       if (b.state == BrickState::Stop) return MarchResult::Stopped;
       if (b.state == BrickState::Empty) {
+        // Every sample of the box at a level up to the box's own is zero; coarser samples in
+        // it may not be: the skip ends at the box or at the end of its level, whichever comes
+        // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
+        // its level or a coarser one, whichever boxes the lookups happened to return: the
+        // image does not depend on how far each skip goes.
         float side = lod.voxelSize(b.level) * BRICK_WIDTH;
         Vec3f lo{b.brick.x * side, b.brick.y * side, b.brick.z * side};
-        advanceTo(s, lod, boxExit(ray, lo, lo + Vec3f{side, side, side}));
+        advanceTo(s, lod,
+                  fminf(boxExit(ray, lo, lo + Vec3f{side, side, side}), lod.levelEnd(b.level)));
         continue;
       }
       resident = b;

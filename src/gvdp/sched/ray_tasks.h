@@ -60,6 +60,7 @@ GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, 
   RayState s = payload[pixel];
   CachedAccess<Pool> access{cache, pool, f.lod};
   bool stopped = march(ray, f.lod, s, access) == MarchResult::Stopped;
+  access.addCounts();
   payload[pixel] = s;
   return stopped;
 }

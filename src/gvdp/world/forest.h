@@ -18,6 +18,10 @@ constexpr float LEAF_CELL = 0.6f, LEAF_RADIUS = 0.16f, LEAF_THICKNESS = 0.01f;
 constexpr float FOLIAGE_SIGMA = 0.18f;  // mean foliage opacity per unit length
 constexpr float GROUND_AMPLITUDE = 1.5f, GROUND_WAVE = 40.0f;
 
+// Trees stand between these heights (trunks from -3 to at most 8, crowns to 8 + 1.3 * 5).
+constexpr float TREE_BOTTOM = -3.0f, TREE_TOP = 8.0f + 1.3f * 5.0f, TRUNK_MAX_TOP = 8.0f;
+constexpr float GROUND_LIPSCHITZ = 1.01f;  // sqrt(1 + (amp * NOISE_LIPSCHITZ / wave)^2)
+
 struct Tree {
   bool exists;
   Vec3f base;  // trunk axis at y = 0, relative to the cell corner
@@ -102,13 +106,11 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
   Vec3f q{static_cast<float>(p.x - cellX * TREE_CELL), static_cast<float>(p.y),
           static_cast<float>(p.z - cellZ * TREE_CELL)};
   // Other cells' trees stay 1 unit inside their cells and within a band of heights.
-  const float TREE_BOTTOM = -3.0f, TREE_TOP = 8.0f + 1.3f * 5.0f;
   float toBorder = fminf(fminf(q.x, TREE_CELL - q.x), fminf(q.z, TREE_CELL - q.z)) + 1.0f;
   float others = fmaxf(toBorder, fmaxf(q.y - TREE_TOP, TREE_BOTTOM - q.y));
 
   Vec3f groundNormal;
   float gy = groundHeight(p, seed, &groundNormal);
-  const float GROUND_LIPSCHITZ = 1.01f;  // sqrt(1 + (amp * NOISE_LIPSCHITZ / wave)^2)
   float groundLB = (q.y - gy) / GROUND_LIPSCHITZ;
 
   float trunk = 1e30f, crown = 1e30f;
@@ -160,6 +162,18 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
   if (alpha <= 0.0f) return {0u, empty};
   Vec3f premultiplied = solidColour * solidAlpha + leafColour * (leafAlpha * (1.0f - solidAlpha));
   return {packRgba8(premultiplied, alpha), empty};
+}
+
+// A box above every tree and the ground is empty (the sky): at height y >= TREE_TOP each distance
+// bound of produceForest is at least the smallest of (y - ground max) / GROUND_LIPSCHITZ,
+// y - TRUNK_MAX_TOP, y - TREE_TOP and, for a crown, (y - TREE_TOP) * min radius / vertical radius
+// >= 0.6 (y - TREE_TOP); 1e-3 covers float rounding.
+GVDP_HD GVDP_INLINE bool forestEmptyBox(Vec3d lo, Vec3d, float voxelSize, uint32_t) {
+  float y = static_cast<float>(lo.y);
+  if (y < TREE_TOP) return false;
+  float ground = (y - GROUND_AMPLITUDE * NOISE_MAX_ABS) / GROUND_LIPSCHITZ;
+  float nearest = fminf(fminf(ground, y - TRUNK_MAX_TOP), 0.6f * (y - TREE_TOP));
+  return nearest >= EMPTY_MARGIN_VOXELS * voxelSize + 1e-3f;
 }
 
 }  // namespace gvdp::detail

@@ -1,7 +1,8 @@
 // The five built-in worlds as producers (world/producer.h), each a type of its own, and
 // BuiltinScene, the producer the command line instantiates once: one of the five chosen by tag
-// (docs/STYLE.md 4: no virtual calls in device code). None gives an emptiness bound for boxes
-// yet: their per-voxel empty flags make the EMPTY bricks.
+// (docs/STYLE.md 4: no virtual calls in device code). perlin and fbm bound boxes by their
+// Lipschitz bounds, forest by the height of its trees; the sphere scenes give no bound (their
+// per-voxel empty flags make their EMPTY bricks).
 #pragma once
 
 #include <cstdint>
@@ -13,20 +14,28 @@
 
 namespace gvdp::detail {
 
-// A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size.
-template <VoxelSample (*FN)(Vec3d, float, uint32_t)>
+GVDP_HD GVDP_INLINE bool noBoxBound(Vec3d, Vec3d, float, uint32_t) {
+  return false;
+}
+
+// A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size,
+// and its box bound.
+template <VoxelSample (*FN)(Vec3d, float, uint32_t),
+          bool (*EMPTY_BOX)(Vec3d, Vec3d, float, uint32_t) = noBoxBound>
 struct SeededWorld {
   float finest;
   uint32_t seed;
 
   GVDP_HD VoxelSample voxel(Vec3d p, float voxelSize) const { return FN(p, voxelSize, seed); }
-  GVDP_HD bool emptyBox(Vec3d, Vec3d, float) const { return false; }
+  GVDP_HD bool emptyBox(Vec3d lo, Vec3d hi, float voxelSize) const {
+    return EMPTY_BOX(lo, hi, voxelSize, seed);
+  }
   GVDP_HD float voxelSize0() const { return finest; }
 };
 
-using PerlinWorld = SeededWorld<producePerlin>;
-using FbmWorld = SeededWorld<produceFbm>;
-using ForestWorld = SeededWorld<produceForest>;
+using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox>;
+using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox>;
+using ForestWorld = SeededWorld<produceForest, forestEmptyBox>;
 using RandomSpheresWorld = SeededWorld<produceRandomSpheres>;
 using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres>;
 
@@ -52,7 +61,18 @@ struct BuiltinScene {
         return AlignedSpheresWorld{finest, seed}.voxel(p, voxelSize);
     }
   }
-  GVDP_HD bool emptyBox(Vec3d, Vec3d, float) const { return false; }
+  GVDP_HD bool emptyBox(Vec3d lo, Vec3d hi, float voxelSize) const {
+    switch (kind) {
+      case SceneKind::Perlin:
+        return PerlinWorld{finest, seed}.emptyBox(lo, hi, voxelSize);
+      case SceneKind::Fbm:
+        return FbmWorld{finest, seed}.emptyBox(lo, hi, voxelSize);
+      case SceneKind::Forest:
+        return ForestWorld{finest, seed}.emptyBox(lo, hi, voxelSize);
+      default:
+        return false;
+    }
+  }
   GVDP_HD float voxelSize0() const { return finest; }
 };
 

@@ -58,6 +58,30 @@ GVDP_HD GVDP_INLINE VoxelSample producePerlin(Vec3d p, float voxelSize, uint32_t
   return makeVoxel(rockAlbedo(static_cast<float>(p.y), normal), normal, alpha, empty);
 }
 
+// Box bounds (the producer's emptyBox, world/producer.h) from a Lipschitz bound: every point of
+// the box lies within half its diagonal of the centre, so the density there is at most the
+// centre's plus Lip times that. DENSITY_SLACK covers the float rounding of the density at the
+// voxel centres, whose empty flags the bound must imply.
+constexpr float DENSITY_SLACK = 1e-3f;
+
+struct BoxCentre {
+  Vec3d centre;
+  float halfDiagonal;
+};
+
+GVDP_HD GVDP_INLINE BoxCentre boxCentre(Vec3d lo, Vec3d hi) {
+  double dx = hi.x - lo.x, dy = hi.y - lo.y, dz = hi.z - lo.z;
+  return {{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)},
+          static_cast<float>(0.5 * sqrt(dx * dx + dy * dy + dz * dz))};
+}
+
+// producePerlin flags a voxel empty when -d >= 3 v Lip.
+GVDP_HD GVDP_INLINE bool perlinEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
+  BoxCentre b = boxCentre(lo, hi);
+  float dMax = perlinDensity(b.centre, seed).d + PERLIN_LIPSCHITZ * b.halfDiagonal;
+  return -dMax >= PERLIN_LIPSCHITZ * EMPTY_MARGIN_VOXELS * voxelSize + DENSITY_SLACK;
+}
+
 // --- fbm --------------------------------------------------------------------------------------
 constexpr int FBM_MAX_OCTAVES = 10;
 constexpr float FBM_HEIGHT = 48.0f, FBM_WAVE0 = 128.0f;
@@ -108,6 +132,16 @@ GVDP_HD GVDP_INLINE VoxelSample produceFbm(Vec3d p, float voxelSize, uint32_t se
   float snow = smoothstep(28.0f, 40.0f, y + 8.0f * normal.y);
   albedo = lerp(albedo, Vec3f{0.92f, 0.93f, 0.96f}, snow);
   return makeVoxel(albedo, normal, alpha, empty);
+}
+
+// produceFbm flags a voxel empty when d <= -1.5 reach, d over the octaves of the voxel size.
+GVDP_HD GVDP_INLINE bool fbmEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
+  BoxCentre b = boxCentre(lo, hi);
+  int octaves = fbmOctaves(voxelSize);
+  float reach = fbmLipschitz(octaves) * voxelSize + fbmRemainder(octaves) +
+                0.25f * voxelSize * fbmLipschitz(fbmOctaves(0.5f * voxelSize));
+  float dMax = fbmDensity(b.centre, octaves, seed).d + fbmLipschitz(octaves) * b.halfDiagonal;
+  return dMax + DENSITY_SLACK <= -1.5f * reach;
 }
 
 }  // namespace gvdp::detail

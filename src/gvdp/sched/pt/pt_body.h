@@ -213,6 +213,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, Pa
     RayState s = loadRayState(&ctx.payload[pixel]);
     CachedAccess<Pool, StartProduction> access{ctx.cache, pool, f.lod, StartProduction{&ctx}};
     MarchResult r = march(ray, f.lod, s, access);
+    access.addCounts();
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) return true;
     if (park(ctx, pixel, access.stopEntry)) return false;

@@ -193,7 +193,7 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
   bool empty = loadRelaxed32(&bp.nonEmpty[warp]) == 0;
   const Rgba8* stage = bp.stage[warp];
   constexpr int PER = (BRICK_SAMPLE_COUNT + 31) / 32;
-  commitBrick<PER>(WarpScope{lane}, ctx.cache, pool, key, empty,
+  commitBrick<PER>(WarpScope{lane}, producer, ctx.cache, pool, key, empty,
                    [&](int, int s) { return loadRelaxed32(&stage[s]); });
   uint32_t p = 0;
   if (lane == 0) p = closeWaitList(ctx, id);
