@@ -151,4 +151,81 @@ TEST(Cache, BrickBordersAreSeamless) {
   EXPECT_GT(tested, 50) << "no pair of resident neighbours found";
 }
 
+TEST(Cache, EmptyCodesAreDistinctEntries) {
+  for (int code = 0; code <= MAX_EMPTY_CODE; ++code) {
+    uint32_t e = emptyEntry(code);
+    EXPECT_TRUE(isEmptyEntry(e)) << code;
+    EXPECT_FALSE(isSlot(e)) << code;
+    EXPECT_EQ(productionTaskOf(e), -1) << code;
+    EXPECT_NE(e, ENTRY_MISSING);
+    EXPECT_NE(e, ENTRY_IN_PRODUCTION);
+    EXPECT_EQ(emptyRadius(e), (1 << code) - 1);
+  }
+  EXPECT_EQ(emptyEntry(0), ENTRY_EMPTY);
+  for (uint32_t e : {ENTRY_MISSING, ENTRY_IN_PRODUCTION, emptyEntry(MAX_EMPTY_CODE) - 1u, 0u,
+                     MAX_SLOTS - 1u, ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS - 1u})
+    EXPECT_FALSE(isEmptyEntry(e)) << e;
+}
+
+// The cube an EMPTY code names is empty: every brick in it, evaluated sample by sample, would be
+// EMPTY (all samples flagged empty and transparent), for each scene with a box bound.
+TEST(Cache, EmptyCubeCodesNameEmptyBricks) {
+  std::mt19937 rng(5);
+  for (const char* name : {"perlin", "fbm", "forest"}) {
+    const BuiltinScene& world = findScene(name).world;
+    int cubes = 0, bigger = 0;
+    for (int i = 0; i < 400 && cubes < 60; ++i) {
+      int level = static_cast<int>(rng() % 8u);
+      auto coord = [&](int lo, int hi) { return lo + static_cast<int>(rng() % (hi - lo)); };
+      BrickKey key{{coord(-40, 40), coord(-4, 400) >> level, coord(-40, 40)}, level};
+      if (!brickBoundedEmpty(world, key)) continue;
+      int code = emptyCubeCode(world, key);
+      if (code == 0) continue;
+      ++cubes;
+      bigger += code > 1;
+      int r = emptyRadius(emptyEntry(code));
+      for (int k = 0; k < 3; ++k) {  // a corner of the cube, then two bricks inside it
+        Vec3i d =
+            k == 0 ? Vec3i{r, -r, r} : Vec3i{coord(-r, r + 1), coord(-r, r + 1), coord(-r, r + 1)};
+        BrickKey inside{key.brick + d, level};
+        for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
+          VoxelSample v = produceBrickSample(world, inside, s);
+          ASSERT_TRUE(v.empty && v.rgba == 0u)
+              << name << " level " << level << " code " << code << " sample " << s;
+        }
+      }
+    }
+    EXPECT_GE(cubes, 20) << name << ": too few empty cubes found";
+    EXPECT_GT(bigger, 0) << name << ": no cube beyond radius 1";
+  }
+}
+
+// The march's division-free lookup agrees with entryIndex inside the window and refuses
+// everything outside it, for windows at negative and positive coordinates.
+TEST(Cache, WindowEntryIsEntryIndexInsideTheWindow) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-5000.0, 5000.0);
+  int inside = 0, outside = 0;
+  for (int frame = 0; frame < 6; ++frame) {
+    Clipmap m = clipmapOf(frameAt({u(rng), u(rng) * 0.01, u(rng)}, frame));
+    for (int i = 0; i < 4000; ++i) {
+      int level = static_cast<int>(rng() % static_cast<unsigned>(m.levels));
+      Vec3i d{static_cast<int>(rng() % (m.width + 4u)) - 2,
+              static_cast<int>(rng() % (m.width + 4u)) - 2,
+              static_cast<int>(rng() % (m.width + 4u)) - 2};
+      Vec3i g = m.windowOrigin[level] + d;
+      uint32_t e = m.windowEntry(level, g);
+      if (m.inWindow(level, g)) {
+        ++inside;
+        ASSERT_EQ(e, m.entryIndex(level, g)) << "level " << level;
+      } else {
+        ++outside;
+        ASSERT_EQ(e, Clipmap::NOT_IN_WINDOW);
+      }
+    }
+  }
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(outside, 100);
+}
+
 }  // namespace gvdp::detail

@@ -47,7 +47,7 @@ TEST(Lod, AdvanceAlwaysProgressesAndLandsOnTheLattice) {
     float before = lod.sampleT(s.level, s.step);
     float target = before + (u(rng) - 0.3f) * 3.0f;  // sometimes behind: must still progress
     RayState next = s;
-    advanceTo(next, lod, target);
+    advanceTo(next, lod, lod.span(next.level), target);
     if (next.level >= lod.levels) continue;
     float after = lod.sampleT(next.level, next.step);
     EXPECT_GT(after, before);

@@ -50,10 +50,13 @@ GVDP_HD GVDP_INLINE uint32_t atomicExch32(uint32_t* p, uint32_t v) {
 #endif
 }
 
+// On the GPU one ld.acquire.gpu: the loads after it see what the writer stored before its
+// release (storeRelease32: fence, then the store); no fence of the reader's own (a volatile load
+// and __threadfence() cost every brick lookup a full fence, 10-13% of the render floor).
 GVDP_HD GVDP_INLINE uint32_t loadAcquire32(const uint32_t* p) {
 #if GVDP_IS_GPU_CODE
-  uint32_t v = *reinterpret_cast<const volatile uint32_t*>(p);
-  __threadfence();
+  uint32_t v;
+  asm volatile("ld.acquire.gpu.u32 %0, [%1];" : "=r"(v) : "l"(p) : "memory");
   return v;
 #else
   return std::atomic_ref<uint32_t>(*const_cast<uint32_t*>(p)).load(std::memory_order_seq_cst);
@@ -62,8 +65,8 @@ GVDP_HD GVDP_INLINE uint32_t loadAcquire32(const uint32_t* p) {
 
 GVDP_HD GVDP_INLINE uint64_t loadAcquire64(const uint64_t* p) {
 #if GVDP_IS_GPU_CODE
-  uint64_t v = *reinterpret_cast<const volatile uint64_t*>(p);
-  __threadfence();
+  uint64_t v;
+  asm volatile("ld.acquire.gpu.u64 %0, [%1];" : "=l"(v) : "l"(p) : "memory");
   return v;
 #else
   return std::atomic_ref<uint64_t>(*const_cast<uint64_t*>(p)).load(std::memory_order_seq_cst);

@@ -71,13 +71,14 @@ GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
   return i < c.freeCount ? c.freeSlots[i] : MAX_SLOTS;
 }
 
-// Algorithm 2, the end: publish what production found. The samples of a resident brick must be
+// Algorithm 2, the end: publish what production found, an empty brick (its EMPTY code,
+// brick_key.h: emptyEntry) or a slot (emptyCode -1). The samples of a resident brick must be
 // written (and fenced, by the caller on the GPU) before this.
-GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, bool empty,
+GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, int emptyCode,
                                       uint32_t slot) {
   uint32_t index = c.clipmap.entryIndex(key.level, key.brick);
-  if (empty) {
-    storeRelease32(&c.entries[index], ENTRY_EMPTY);
+  if (emptyCode >= 0) {
+    storeRelease32(&c.entries[index], emptyEntry(emptyCode));
     atomicAdd32(&c.counters[COUNTER_EMPTY], 1u);
   } else if (slot == MAX_SLOTS) {
     storeRelease32(&c.entries[index], ENTRY_MISSING);  // retried after a refill, or degraded

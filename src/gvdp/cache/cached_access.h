@@ -1,6 +1,7 @@
 // The cached side of Algorithm 1: how a ray reads the clipmap. A resident brick is sampled from
-// the pool (and its timestamp touched); an EMPTY brick, or an EMPTY coarser ancestor, is skipped
-// whole; a MISSING brick is claimed with a CAS (the winner queues its production) and the ray
+// the pool (and its timestamp touched); an EMPTY brick is skipped with the empty cube its entry
+// names (brick_key.h: emptyEntry), a missing one under an EMPTY coarser ancestor with that
+// ancestor's; a MISSING brick is claimed with a CAS (the winner queues its production) and the ray
 // stops, as on IN_PRODUCTION. In a degraded frame (no free slot left) nothing is produced: the
 // ray samples the nearest resident coarser level, or passes through.
 #pragma once
@@ -55,9 +56,10 @@ struct CachedAccess {
   uint32_t* stopEntry = nullptr;                 // the entry the ray stopped on (dp re-reads it)
   uint32_t samples = 0, lookups = 0, skips = 0;  // this march's (addCounts after it)
 
+  // An ancestor's entry; MISSING outside its window (never read: it would alias another brick).
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
-    Vec3i g = cache.clipmap.globalBrick(level, localBrick);
-    return loadAcquire32(&cache.entries[cache.clipmap.entryIndex(level, g)]);
+    uint32_t i = cache.clipmap.windowEntry(level, cache.clipmap.globalBrick(level, localBrick));
+    return i == Clipmap::NOT_IN_WINDOW ? ENTRY_MISSING : loadAcquire32(&cache.entries[i]);
   }
 
   GVDP_HD BrickLookup resident(uint32_t slot, int level, Vec3i brick) const {
@@ -85,36 +87,24 @@ struct CachedAccess {
     Vec3i g = cache.clipmap.globalBrick(level, brick);
     // The clipmap width covers every sample of a level (lod_test checks the formula); a brick
     // outside its window could only alias another one, so it is never read.
-    if (!cache.clipmap.inWindow(level, g)) return {BrickState::Empty, 0u, level, brick};
-    uint32_t* entry = &cache.entries[cache.clipmap.entryIndex(level, g)];
+    uint32_t index = cache.clipmap.windowEntry(level, g);
+    if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
+    uint32_t* entry = &cache.entries[index];
     uint32_t e = loadAcquire32(entry);
     if (isSlot(e)) return resident(e, level, brick);
-    if (e == ENTRY_EMPTY) return coarsestEmpty({BrickState::Empty, 0u, level, brick});
+    if (isEmptyEntry(e)) return {BrickState::Empty, 0u, level, brick, emptyRadius(e)};
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
       a = {floorDiv(a.x, 2), floorDiv(a.y, 2), floorDiv(a.z, 2)};
       uint32_t ea = entryAt(up, a);
-      if (ea == ENTRY_EMPTY) return coarsestEmpty({BrickState::Empty, 0u, up, a});
+      if (isEmptyEntry(ea)) return {BrickState::Empty, 0u, up, a, emptyRadius(ea)};
       if (isSlot(ea) && degraded()) return resident(ea, up, a);
     }
     if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
     if (e == ENTRY_MISSING) onMiss(cache, level, g, entry);
     stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};
-  }
-
-  // The largest known-empty box around an EMPTY brick: its chain of EMPTY ancestors, up to the
-  // first that is not EMPTY. Every sample of a level at or below the box's level inside it is
-  // zero (the producer's empty flag is conservative, world/producer.h), so the march may skip
-  // them all (it stops the skip at the end of the box's level: render/march.h).
-  GVDP_HD BrickLookup coarsestEmpty(BrickLookup b) const {
-    while (b.level + 1 < lod.levels) {
-      Vec3i a{floorDiv(b.brick.x, 2), floorDiv(b.brick.y, 2), floorDiv(b.brick.z, 2)};
-      if (entryAt(b.level + 1, a) != ENTRY_EMPTY) break;
-      b = {BrickState::Empty, 0u, b.level + 1, a};
-    }
-    return b;
   }
 
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {

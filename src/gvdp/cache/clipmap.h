@@ -14,6 +14,7 @@ struct Clipmap {
   int levels;
   Vec3i windowOrigin[MAX_LEVELS];      // global brick coordinates of each window's min corner
   Vec3i localOriginBrick[MAX_LEVELS];  // global brick coordinates of the local origin
+  Vec3i windowPhase[MAX_LEVELS];       // windowOrigin mod W, per axis
 
   GVDP_HD Vec3i globalBrick(int level, Vec3i localBrick) const {
     return localOriginBrick[level] + localBrick;
@@ -28,6 +29,21 @@ struct Clipmap {
             static_cast<uint32_t>(floorMod(g.y, width))) *
                w +
            static_cast<uint32_t>(floorMod(g.x, width));
+  }
+  // The entry of brick g of `level` if it lies in the level's window, else NOT_IN_WINDOW: the
+  // march's lookup, with no division (entryIndex's floorMod): g - windowOrigin lies in [0, W),
+  // so g mod W is it plus the window's phase, less W once.
+  static constexpr uint32_t NOT_IN_WINDOW = 0xffffffffu;
+  GVDP_HD uint32_t windowEntry(int level, Vec3i g) const {
+    Vec3i d = g - windowOrigin[level];
+    if (static_cast<unsigned>(d.x) >= static_cast<unsigned>(width) ||
+        static_cast<unsigned>(d.y) >= static_cast<unsigned>(width) ||
+        static_cast<unsigned>(d.z) >= static_cast<unsigned>(width))
+      return NOT_IN_WINDOW;
+    Vec3i m = d + windowPhase[level];
+    auto wrap = [&](int a) { return static_cast<uint32_t>(a >= width ? a - width : a); };
+    uint32_t w = static_cast<uint32_t>(width);
+    return ((static_cast<uint32_t>(level) * w + wrap(m.z)) * w + wrap(m.y)) * w + wrap(m.x);
   }
   size_t entryCount() const {
     return static_cast<size_t>(levels) * static_cast<size_t>(width) * width * width;
@@ -49,6 +65,8 @@ inline Clipmap clipmapOf(const FrameSetup& frame) {
     Vec3i eye = floorToInt(frame.eye / static_cast<float>(brickSize));
     int half = c.width / 2;
     c.windowOrigin[level] = origin + eye - Vec3i{half, half, half};
+    Vec3i o = c.windowOrigin[level];
+    c.windowPhase[level] = {floorMod(o.x, c.width), floorMod(o.y, c.width), floorMod(o.z, c.width)};
   }
   return c;
 }

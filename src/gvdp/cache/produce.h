@@ -38,21 +38,39 @@ GVDP_HD GVDP_INLINE VoxelSample produceBrickSample(const P& producer, const Bric
   return producer.voxel(brickSampleCentre(key, sample, producer.voxelSize0()), vs);
 }
 
-// The producer's emptiness bound for the box of a brick's samples widened by one voxel (the
-// reach of the empty-flag contract, world/producer.h): true makes the brick EMPTY unevaluated.
+// The producer's emptiness bound for the box of the samples of the cube of bricks within
+// `radius` of a brick, widened by one voxel (the reach of the empty-flag contract,
+// world/producer.h). Radius 0: true makes the brick EMPTY unevaluated.
 template <class P>
-GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& key) {
+GVDP_HD GVDP_INLINE bool cubeBoundedEmpty(const P& producer, const BrickKey& key, int radius) {
   double vs = ldexp(static_cast<double>(producer.voxelSize0()), key.level);
-  Vec3d lo = brickSampleCentre(key, 0, producer.voxelSize0());
-  Vec3d hi = brickSampleCentre(key, BRICK_SAMPLE_COUNT - 1, producer.voxelSize0());
+  Vec3i r{radius, radius, radius};
+  Vec3d lo = brickSampleCentre({key.brick - r, key.level}, 0, producer.voxelSize0());
+  Vec3d hi =
+      brickSampleCentre({key.brick + r, key.level}, BRICK_SAMPLE_COUNT - 1, producer.voxelSize0());
   return producer.emptyBox(lo - Vec3d{vs, vs, vs}, hi + Vec3d{vs, vs, vs}, static_cast<float>(vs));
 }
 
+template <class P>
+GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& key) {
+  return cubeBoundedEmpty(producer, key, 0);
+}
+
+// The EMPTY code of an empty brick (brick_key.h: emptyEntry): the largest k whose cube of
+// radius 2^k - 1 bricks the producer's bound clears, 0 if none but the brick itself.
+template <class P>
+GVDP_HD GVDP_INLINE int emptyCubeCode(const P& producer, const BrickKey& key) {
+  int code = 0;
+  while (code < MAX_EMPTY_CODE && cubeBoundedEmpty(producer, key, (2 << code) - 1)) ++code;
+  return code;
+}
+
 // A brick found EMPTY may lie in a larger box the producer's bound clears: its ancestors are
-// marked EMPTY, each exactly as its own production would have found it (brickBoundedEmpty), up
-// to the first the bound does not clear or that is not MISSING (claimed, produced or marked
-// already: one CAS each, so a brick in production keeps its state and its claimant loses
-// nothing). Rays then skip the whole box with one lookup (cached_access.h: coarsestEmpty).
+// marked EMPTY, each exactly as its own production would have found it (brickBoundedEmpty and
+// emptyCubeCode), up to the first the bound does not clear or that is not MISSING (claimed,
+// produced or marked already: one CAS each, so a brick in production keeps its state and its
+// claimant loses nothing). A ray that meets a missing brick under one skips it unproduced
+// (cached_access.h).
 template <class P>
 GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const CacheView& cache,
                                                    BrickKey key) {
@@ -61,7 +79,8 @@ GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const Cach
            key.level + 1};
     if (!cache.clipmap.inWindow(key.level, key.brick) || !brickBoundedEmpty(producer, key)) return;
     uint32_t* entry = &cache.entries[cache.clipmap.entryIndex(key.level, key.brick)];
-    if (atomicCas32(entry, ENTRY_MISSING, ENTRY_EMPTY) != ENTRY_MISSING) return;
+    uint32_t marked = emptyEntry(emptyCubeCode(producer, key));
+    if (atomicCas32(entry, ENTRY_MISSING, marked) != ENTRY_MISSING) return;
   }
 }
 
@@ -88,7 +107,7 @@ GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, cons
   }
   group.sync();
   if (group.rank() == 0) {
-    publishBrick(cache, key, empty, slot);
+    publishBrick(cache, key, empty ? emptyCubeCode(producer, key) : -1, slot);
     if (empty) markBoundedEmptyAncestors(producer, cache, key);
   }
 }

@@ -11,6 +11,12 @@
 
 namespace gvdp::detail {
 
+// A level's voxel size and distance range, computed once per level a ray enters (the march
+// keeps them in registers): the same values as Lod's functions, so the same samples.
+struct LevelSpan {
+  float voxelSize, start, end;
+};
+
 struct Lod {
   float voxelSize0;  // v0
   float pixelAngle;  // cone spread per unit distance (pixel footprint at t = 1)
@@ -24,9 +30,15 @@ struct Lod {
   GVDP_HD float sampleT(int level, int step) const {
     return levelStart(level) + (static_cast<float>(step) + 0.5f) * voxelSize(level);
   }
+  GVDP_HD LevelSpan span(int level) const {
+    return {voxelSize(level), levelStart(level), levelEnd(level)};
+  }
   // The first lattice step of `level` at or after distance t.
   GVDP_HD int firstStepAtOrAfter(int level, float t) const {
-    float k = ceilf((t - levelStart(level)) / voxelSize(level) - 0.5f);
+    return firstStepAtOrAfter(span(level), t);
+  }
+  GVDP_HD static int firstStepAtOrAfter(const LevelSpan& span, float t) {
+    float k = ceilf((t - span.start) / span.voxelSize - 0.5f);
     return k > 0.0f ? static_cast<int>(k) : 0;
   }
   // The level whose distance range holds t (levels when beyond the last one).

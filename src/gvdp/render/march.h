@@ -28,30 +28,36 @@ GVDP_HD GVDP_INLINE RayState initialRayState() {
 }
 
 // Moves the state to the first lattice sample at or after distance t (strictly after the
-// current sample, so a skip always progresses).
-GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, float t) {
+// current sample, so a skip always progresses); `span` is the current level's.
+GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, const LevelSpan& span, float t) {
   int level = s.level;
-  while (level < lod.levels && t >= lod.levelEnd(level)) ++level;
-  if (level >= lod.levels) {
-    s.level = lod.levels;
+  if (t >= span.end) {
+    ++level;
+    while (level < lod.levels && t >= lod.levelEnd(level)) ++level;
+    if (level >= lod.levels) {
+      s.level = lod.levels;
+      return;
+    }
+    s.level = level;
+    s.step = lod.firstStepAtOrAfter(level, t);
     return;
   }
-  int step = lod.firstStepAtOrAfter(level, t);
-  if (level == s.level && step <= s.step) step = s.step + 1;
-  s.level = level;
-  s.step = step;
+  int step = Lod::firstStepAtOrAfter(span, t);
+  s.step = step <= s.step ? s.step + 1 : step;
 }
 
 enum class BrickState : uint8_t { Resident, Empty, Stop };
 
-// What to do with the brick under a sample: sample `slot` (Resident) or skip the box of
-// `brick` (Empty), both at `level`, which is the sample's level or a coarser one (an EMPTY
-// ancestor, or a resident ancestor standing in for a missing brick in a degraded frame).
+// What to do with the brick under a sample: sample `slot` (Resident) or skip the cube of the
+// bricks within `radius` of `brick` (Empty), both at `level`, which is the sample's level or a
+// coarser one (an EMPTY ancestor, or a resident ancestor standing in for a missing brick in a
+// degraded frame).
 struct BrickLookup {
   BrickState state;
   uint32_t slot;
   int level;
-  Vec3i brick;  // local brick coordinates at `level`
+  Vec3i brick;     // local brick coordinates at `level`
+  int radius = 0;  // Empty: the cube's radius in bricks
 };
 
 enum class MarchResult : uint8_t { Finished, Stopped };
@@ -65,30 +71,38 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
   BrickLookup resident{BrickState::Stop, 0u, -1, {0, 0, 0}};
   int residentLevel = -1;  // the sample level and brick `resident` was looked up for
   Vec3i residentBrick{0, 0, 0};
+  int spanLevel = -1;  // the level `span` describes
+  LevelSpan span{};
   while (!s.finished(lod)) {
-    float t = lod.sampleT(s.level, s.step);
-    if (t >= lod.levelEnd(s.level)) {
+    if (s.level != spanLevel) {
+      span = lod.span(s.level);
+      spanLevel = s.level;
+    }
+    float t = span.start + (static_cast<float>(s.step) + 0.5f) * span.voxelSize;  // sampleT
+    if (t >= span.end) {
       ++s.level;
       s.step = 0;
       continue;
     }
-    float vs = lod.voxelSize(s.level);
     Vec3f p = ray.o + ray.d * t;
-    Vec3i brick = floorToInt(p / vs * (1.0f / BRICK_WIDTH));
+    Vec3i brick = floorToInt(p / span.voxelSize * (1.0f / BRICK_WIDTH));
     BrickLookup b = resident;
     if (residentLevel != s.level || !(brick == residentBrick)) {
       b = access.lookup(s.level, brick);
       if (b.state == BrickState::Stop) return MarchResult::Stopped;
       if (b.state == BrickState::Empty) {
-        // Every sample of the box at a level up to the box's own is zero; coarser samples in
-        // it may not be: the skip ends at the box or at the end of its level, whichever comes
+        // Every sample of the cube at a level up to the cube's own is zero; coarser samples in
+        // it may not be: the skip ends at the cube or at the end of its level, whichever comes
         // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
         // its level or a coarser one, whichever boxes the lookups happened to return: the
         // image does not depend on how far each skip goes.
         float side = lod.voxelSize(b.level) * BRICK_WIDTH;
-        Vec3f lo{b.brick.x * side, b.brick.y * side, b.brick.z * side};
-        advanceTo(s, lod,
-                  fminf(boxExit(ray, lo, lo + Vec3f{side, side, side}), lod.levelEnd(b.level)));
+        Vec3i first = b.brick - Vec3i{b.radius, b.radius, b.radius};
+        Vec3f lo{first.x * side, first.y * side, first.z * side};
+        float extent = side * static_cast<float>(2 * b.radius + 1);
+        float levelEnd = b.level == s.level ? span.end : lod.levelEnd(b.level);
+        advanceTo(s, lod, span,
+                  fminf(boxExit(ray, lo, lo + Vec3f{extent, extent, extent}), levelEnd));
         continue;
       }
       resident = b;

@@ -75,10 +75,14 @@ GVDP_HD GVDP_INLINE BoxCentre boxCentre(Vec3d lo, Vec3d hi) {
           static_cast<float>(0.5 * sqrt(dx * dx + dy * dy + dz * dz))};
 }
 
-// producePerlin flags a voxel empty when -d >= 3 v Lip.
+// producePerlin flags a voxel empty when -d >= 3 v Lip. Two upper bounds of d over the box, the
+// smaller kept: the Lipschitz one (tight near the surface) and the height one, d <= -y / H plus
+// the noise layers' largest values (above the terrain, where the first is loose at coarse
+// levels: one lookup then skips a sky ray over a whole level).
 GVDP_HD GVDP_INLINE bool perlinEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
   BoxCentre b = boxCentre(lo, hi);
-  float dMax = perlinDensity(b.centre, seed).d + PERLIN_LIPSCHITZ * b.halfDiagonal;
+  float dHeight = -static_cast<float>(lo.y) / PERLIN_HEIGHT + (1.0f + PERLIN_AMP1) * NOISE_MAX_ABS;
+  float dMax = fminf(perlinDensity(b.centre, seed).d + PERLIN_LIPSCHITZ * b.halfDiagonal, dHeight);
   return -dMax >= PERLIN_LIPSCHITZ * EMPTY_MARGIN_VOXELS * voxelSize + DENSITY_SLACK;
 }
 
@@ -141,7 +145,10 @@ GVDP_HD GVDP_INLINE bool fbmEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32
   float reach = fbmLipschitz(octaves) * voxelSize + fbmRemainder(octaves) +
                 0.25f * voxelSize * fbmLipschitz(fbmOctaves(0.5f * voxelSize));
   float dMax = fbmDensity(b.centre, octaves, seed).d + fbmLipschitz(octaves) * b.halfDiagonal;
-  return dMax + DENSITY_SLACK <= -1.5f * reach;
+  // The height bound as perlin's: the octaves summed add at most their amplitudes.
+  float dHeight =
+      -static_cast<float>(lo.y) / FBM_HEIGHT + 2.0f * NOISE_MAX_ABS - fbmRemainder(octaves);
+  return fminf(dMax, dHeight) + DENSITY_SLACK <= -1.5f * reach;
 }
 
 }  // namespace gvdp::detail
