@@ -15,7 +15,6 @@ namespace gvdp::detail {
 // keeps them in registers): the same values as Lod's functions, so the same samples.
 struct LevelSpan {
   float voxelSize, start, end;
-  float bricksPerUnit;  // 1 / (BRICK_WIDTH voxelSize): a position's brick is floor(p * this)
 };
 
 struct Lod {
@@ -32,8 +31,7 @@ struct Lod {
     return levelStart(level) + (static_cast<float>(step) + 0.5f) * voxelSize(level);
   }
   GVDP_HD LevelSpan span(int level) const {
-    float v = voxelSize(level);
-    return {v, levelStart(level), levelEnd(level), 1.0f / (v * BRICK_WIDTH)};
+    return {voxelSize(level), levelStart(level), levelEnd(level)};
   }
   // The first lattice step of `level` at or after distance t.
   GVDP_HD int firstStepAtOrAfter(int level, float t) const {
