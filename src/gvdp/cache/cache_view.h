@@ -10,6 +10,10 @@
 
 namespace gvdp::detail {
 
+// What rays did with the cache in a frame (CacheStats): samples composited, brick lookups (one
+// per brick entered: a resident brick's samples share one) and lookups that skipped empty space.
+enum MarchCounter : int { MARCH_SAMPLES, MARCH_LOOKUPS, MARCH_SKIPS, MARCH_COUNTER_COUNT };
+
 enum CacheCounter : int {
   COUNTER_FREE_NEXT,  // next index into the free slot list (may run past freeCount)
   COUNTER_REQUESTS,   // bricks queued for production (CAS winners)
@@ -18,13 +22,9 @@ enum CacheCounter : int {
   COUNTER_FAILED,     // productions without a free slot (entry back to MISSING)
   COUNTER_EVICTED,    // resident bricks unmapped (LRU or leaving the clipmap)
   COUNTER_MARCH,      // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
-  COUNTER_COUNT = COUNTER_MARCH + 2 * 3
+  COUNTER_COUNT = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT
 };
-
-// What rays did with the cache in a frame (CacheStats): samples composited, brick lookups (one
-// per brick entered: a resident brick's samples share one) and lookups that skipped empty space.
-enum MarchCounter : int { MARCH_SAMPLES, MARCH_LOOKUPS, MARCH_SKIPS, MARCH_COUNTER_COUNT };
-static_assert(COUNTER_MARCH % 2 == 0 && COUNTER_COUNT == COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT);
+static_assert(COUNTER_MARCH % 2 == 0, "the march's 64-bit counters must be 8-byte aligned");
 
 struct CacheView {
   Clipmap clipmap;

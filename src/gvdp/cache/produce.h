@@ -77,8 +77,9 @@ GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const Cach
   while (key.level + 1 < cache.clipmap.levels) {
     key = {{floorDiv(key.brick.x, 2), floorDiv(key.brick.y, 2), floorDiv(key.brick.z, 2)},
            key.level + 1};
-    if (!cache.clipmap.inWindow(key.level, key.brick) || !brickBoundedEmpty(producer, key)) return;
-    uint32_t* entry = &cache.entries[cache.clipmap.entryIndex(key.level, key.brick)];
+    uint32_t index = cache.clipmap.windowEntry(key.level, key.brick);
+    if (index == Clipmap::NOT_IN_WINDOW || !brickBoundedEmpty(producer, key)) return;
+    uint32_t* entry = &cache.entries[index];
     uint32_t marked = emptyEntry(emptyCubeCode(producer, key));
     if (atomicCas32(entry, ENTRY_MISSING, marked) != ENTRY_MISSING) return;
   }

@@ -15,6 +15,11 @@ namespace gvdp::detail {
 // keeps them in registers): the same values as Lod's functions, so the same samples.
 struct LevelSpan {
   float voxelSize, start, end;
+
+  // Distance of lattice sample `step` of the level.
+  GVDP_HD float sampleT(int step) const {
+    return start + (static_cast<float>(step) + 0.5f) * voxelSize;
+  }
 };
 
 struct Lod {
@@ -27,12 +32,10 @@ struct Lod {
     return level == 0 ? 0.0f : voxelSize(level - 1) / pixelAngle;
   }
   GVDP_HD float levelEnd(int level) const { return voxelSize(level) / pixelAngle; }
-  GVDP_HD float sampleT(int level, int step) const {
-    return levelStart(level) + (static_cast<float>(step) + 0.5f) * voxelSize(level);
-  }
   GVDP_HD LevelSpan span(int level) const {
     return {voxelSize(level), levelStart(level), levelEnd(level)};
   }
+  GVDP_HD float sampleT(int level, int step) const { return span(level).sampleT(step); }
   // The first lattice step of `level` at or after distance t.
   GVDP_HD int firstStepAtOrAfter(int level, float t) const {
     return firstStepAtOrAfter(span(level), t);

@@ -78,7 +78,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
       span = lod.span(s.level);
       spanLevel = s.level;
     }
-    float t = span.start + (static_cast<float>(s.step) + 0.5f) * span.voxelSize;  // sampleT
+    float t = span.sampleT(s.step);
     if (t >= span.end) {
       ++s.level;
       s.step = 0;

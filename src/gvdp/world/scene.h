@@ -47,31 +47,27 @@ struct BuiltinScene {
   float finest;  // voxel size at level 0, in world units
   uint32_t seed;
 
-  GVDP_HD VoxelSample voxel(Vec3d p, float voxelSize) const {
+  // Calls f with the chosen world (the one switch over the kinds).
+  template <class F>
+  GVDP_HD auto visit(F f) const {
     switch (kind) {
       case SceneKind::Perlin:
-        return PerlinWorld{finest, seed}.voxel(p, voxelSize);
+        return f(PerlinWorld{finest, seed});
       case SceneKind::Fbm:
-        return FbmWorld{finest, seed}.voxel(p, voxelSize);
+        return f(FbmWorld{finest, seed});
       case SceneKind::Forest:
-        return ForestWorld{finest, seed}.voxel(p, voxelSize);
+        return f(ForestWorld{finest, seed});
       case SceneKind::RandomSpheres:
-        return RandomSpheresWorld{finest, seed}.voxel(p, voxelSize);
+        return f(RandomSpheresWorld{finest, seed});
       default:
-        return AlignedSpheresWorld{finest, seed}.voxel(p, voxelSize);
+        return f(AlignedSpheresWorld{finest, seed});
     }
   }
+  GVDP_HD VoxelSample voxel(Vec3d p, float voxelSize) const {
+    return visit([&](const auto& world) { return world.voxel(p, voxelSize); });
+  }
   GVDP_HD bool emptyBox(Vec3d lo, Vec3d hi, float voxelSize) const {
-    switch (kind) {
-      case SceneKind::Perlin:
-        return PerlinWorld{finest, seed}.emptyBox(lo, hi, voxelSize);
-      case SceneKind::Fbm:
-        return FbmWorld{finest, seed}.emptyBox(lo, hi, voxelSize);
-      case SceneKind::Forest:
-        return ForestWorld{finest, seed}.emptyBox(lo, hi, voxelSize);
-      default:
-        return false;
-    }
+    return visit([&](const auto& world) { return world.emptyBox(lo, hi, voxelSize); });
   }
   GVDP_HD float voxelSize0() const { return finest; }
 };

@@ -120,15 +120,19 @@ GVDP_HD GVDP_INLINE DensitySample fbmDensity(Vec3d p, int octaves, uint32_t seed
   return s;
 }
 
+// A voxel of this size is empty only if no finer level (more octaves, smaller voxels) can put
+// matter within one coarse voxel of it: slope over that distance + the octaves still to come +
+// the finest coverage band (max over v <= V/2 of 0.5 v Lip(v), reached at v = V/2). Empty when
+// d <= -1.5 reach.
+GVDP_HD GVDP_INLINE float fbmEmptyReach(float voxelSize, int octaves) {
+  return fbmLipschitz(octaves) * voxelSize + fbmRemainder(octaves) +
+         0.25f * voxelSize * fbmLipschitz(fbmOctaves(0.5f * voxelSize));
+}
+
 GVDP_HD GVDP_INLINE VoxelSample produceFbm(Vec3d p, float voxelSize, uint32_t seed) {
   int octaves = fbmOctaves(voxelSize);
   DensitySample s = fbmDensity(p, octaves, seed);
-  // Empty only if no finer level (more octaves, smaller voxels) can put matter within one
-  // coarse voxel of this sample: slope over that distance + the octaves still to come + the
-  // finest coverage band (max over v <= V/2 of 0.5 v Lip(v), reached at v = V/2).
-  float reach = fbmLipschitz(octaves) * voxelSize + fbmRemainder(octaves) +
-                0.25f * voxelSize * fbmLipschitz(fbmOctaves(0.5f * voxelSize));
-  bool empty = s.d <= -1.5f * reach;
+  bool empty = s.d <= -1.5f * fbmEmptyReach(voxelSize, octaves);
   float alpha = densityCoverage(s, voxelSize);
   Vec3f normal = normalize(-s.grad);
   float y = static_cast<float>(p.y);
@@ -142,8 +146,7 @@ GVDP_HD GVDP_INLINE VoxelSample produceFbm(Vec3d p, float voxelSize, uint32_t se
 GVDP_HD GVDP_INLINE bool fbmEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
   BoxCentre b = boxCentre(lo, hi);
   int octaves = fbmOctaves(voxelSize);
-  float reach = fbmLipschitz(octaves) * voxelSize + fbmRemainder(octaves) +
-                0.25f * voxelSize * fbmLipschitz(fbmOctaves(0.5f * voxelSize));
+  float reach = fbmEmptyReach(voxelSize, octaves);
   float dMax = fbmDensity(b.centre, octaves, seed).d + fbmLipschitz(octaves) * b.halfDiagonal;
   // The height bound as perlin's: the octaves summed add at most their amplitudes.
   float dHeight =
