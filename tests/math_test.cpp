@@ -19,11 +19,12 @@ TEST(Math, FloorDivAndModMatchMathematicalDefinitions) {
 
 TEST(Math, BoxExitFromInside) {
   Ray r{{0.5f, 0.5f, 0.5f}, normalize(Vec3f{1.0f, 0.0f, 0.0f})};
-  EXPECT_FLOAT_EQ(boxExit(r, {0, 0, 0}, {1, 1, 1}), 0.5f);
+  EXPECT_FLOAT_EQ(boxExit(r, inverseDirection(r), {0, 0, 0}, {1, 1, 1}), 0.5f);
   Ray diag{{0, 0, 0}, normalize(Vec3f{1, 1, 1})};
-  EXPECT_NEAR(boxExit(diag, {-1, -1, -1}, {2, 2, 2}), 2.0f * std::sqrt(3.0f), 1e-5f);
+  EXPECT_NEAR(boxExit(diag, inverseDirection(diag), {-1, -1, -1}, {2, 2, 2}),
+              2.0f * std::sqrt(3.0f), 1e-5f);
   Ray neg{{0.25f, 0.5f, 0.5f}, {-1.0f, 0.0f, 0.0f}};
-  EXPECT_FLOAT_EQ(boxExit(neg, {0, 0, 0}, {1, 1, 1}), 0.25f);
+  EXPECT_FLOAT_EQ(boxExit(neg, inverseDirection(neg), {0, 0, 0}, {1, 1, 1}), 0.25f);
 }
 
 TEST(Math, NormalizeAndCross) {

@@ -62,9 +62,16 @@ struct CachedAccess {
     return i == Clipmap::NOT_IN_WINDOW ? ENTRY_MISSING : loadAcquire32(&cache.entries[i]);
   }
 
+  // A resident brick, its timestamp set to this frame: on the GPU by a plain store (the
+  // warp's stores to one slot coalesce, and nothing waits on them), on the CPU only when it
+  // changes (a store per lookup would bounce the cache line between threads).
   GVDP_HD BrickLookup resident(uint32_t slot, int level, Vec3i brick) const {
+#if GVDP_IS_GPU_CODE
+    storeRelaxed32(&cache.timestamps[slot], cache.frame);
+#else
     if (loadRelaxed32(&cache.timestamps[slot]) != cache.frame)
       storeRelaxed32(&cache.timestamps[slot], cache.frame);
+#endif
     return {BrickState::Resident, slot, level, brick};
   }
 

@@ -15,6 +15,7 @@ namespace gvdp::detail {
 // keeps them in registers): the same values as Lod's functions, so the same samples.
 struct LevelSpan {
   float voxelSize, start, end;
+  float bricksPerUnit;  // 1 / (BRICK_WIDTH voxelSize): a position's brick is floor(p * this)
 
   // Distance of lattice sample `step` of the level.
   GVDP_HD float sampleT(int step) const {
@@ -33,7 +34,8 @@ struct Lod {
   }
   GVDP_HD float levelEnd(int level) const { return voxelSize(level) / pixelAngle; }
   GVDP_HD LevelSpan span(int level) const {
-    return {voxelSize(level), levelStart(level), levelEnd(level)};
+    float v = voxelSize(level);
+    return {v, levelStart(level), levelEnd(level), 1.0f / (v * BRICK_WIDTH)};
   }
   GVDP_HD float sampleT(int level, int step) const { return span(level).sampleT(step); }
   // The first lattice step of `level` at or after distance t.

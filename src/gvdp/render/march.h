@@ -73,6 +73,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
   Vec3i residentBrick{0, 0, 0};
   int spanLevel = -1;  // the level `span` describes
   LevelSpan span{};
+  Vec3f invD = inverseDirection(ray);
   while (!s.finished(lod)) {
     if (s.level != spanLevel) {
       span = lod.span(s.level);
@@ -85,7 +86,9 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
       continue;
     }
     Vec3f p = ray.o + ray.d * t;
-    Vec3i brick = floorToInt(p / span.voxelSize * (1.0f / BRICK_WIDTH));
+    // A position on a brick face may round to either brick: both give it the same value
+    // (neighbouring bricks share their border samples, and EMPTY bounds reach a voxel beyond).
+    Vec3i brick = floorToInt(p * span.bricksPerUnit);
     BrickLookup b = resident;
     if (residentLevel != s.level || !(brick == residentBrick)) {
       b = access.lookup(s.level, brick);
@@ -102,7 +105,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
         float extent = side * static_cast<float>(2 * b.radius + 1);
         float levelEnd = b.level == s.level ? span.end : lod.levelEnd(b.level);
         advanceTo(s, lod, span,
-                  fminf(boxExit(ray, lo, lo + Vec3f{extent, extent, extent}), levelEnd));
+                  fminf(boxExit(ray, invD, lo, lo + Vec3f{extent, extent, extent}), levelEnd));
         continue;
       }
       resident = b;
