@@ -228,4 +228,52 @@ TEST(Cache, WindowEntryIsEntryIndexInsideTheWindow) {
   EXPECT_GT(outside, 100);
 }
 
+// Production's occupancy is exact per cell: a clear cell has only zero samples in its reads, a
+// set one at least one nonzero; and a position in a clear cell samples zero.
+TEST(Cache, OccupancyCellsAreExact) {
+  BrickCacheCpu cache(256);
+  FrameSetup f = frameAt({10.5, 8.0, 0.5}, 0);
+  cache.beginFrame(f);
+  CacheView v = cache.view();
+  const Clipmap& m = cache.clipmap();
+  BrickPool pool = cache.pool();
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(0.0f, 8.0f);
+  int bricks = 0, clear = 0, set = 0;
+  for (int level = 0; level < 3; ++level)
+    for (int y = -6; y <= 2; ++y)
+      for (int x = -3; x <= 3; ++x) {
+        Vec3i local{x, y, 1};
+        BrickKey key{m.globalBrick(level, local), level};
+        produce(cache, v, key);
+        uint32_t slot = cache.entries()[m.entryIndex(level, key.brick)];
+        if (!isSlot(slot)) continue;
+        ++bricks;
+        uint64_t occupancy = pool.occupancy[slot];
+        const Rgba8* samples = pool.texels + size_t{slot} * BRICK_SAMPLE_COUNT;
+        for (int c = 0; c < 64; ++c) {
+          Vec3i cell{c % 4, (c / 4) % 4, c / 16};
+          bool nonzero = false;
+          for (int k = 0; k < 64; ++k) {
+            Vec3i i{2 * cell.x + k % 4, 2 * cell.y + (k / 4) % 4, 2 * cell.z + k / 16};
+            nonzero = nonzero || samples[(i.z * BRICK_SAMPLES + i.y) * BRICK_SAMPLES + i.x] != 0u;
+          }
+          ASSERT_EQ(nonzero, ((occupancy >> c) & 1u) != 0) << "slot " << slot << " cell " << c;
+          (nonzero ? set : clear)++;
+        }
+        Vec3i origin{8 * local.x, 8 * local.y, 8 * local.z};
+        for (int k = 0; k < 200; ++k) {
+          Vec3f p{u(rng), u(rng), u(rng)};
+          if (occupancy & occupancyBit(p)) continue;
+          Vec4f c =
+              pool.sample(slot, origin, Vec3f{origin.x + p.x, origin.y + p.y, origin.z + p.z});
+          ASSERT_EQ(c.w, 0.0f);
+          ASSERT_EQ(c.x + c.y + c.z, 0.0f);
+        }
+      }
+  EXPECT_GT(bricks, 5) << "no resident brick near the surface";
+  EXPECT_GT(clear, 0);
+  EXPECT_GT(set, 0);
+}
+
 }  // namespace gvdp::detail

@@ -39,6 +39,7 @@ class BrickCache {
         ops_(poolBricks, opsArgs...) {
     GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
     texels_ = Buffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
+    occupancy_ = Buffer<uint64_t>(poolBricks);
   }
   BrickCache(const BrickCache&) = delete;
   BrickCache& operator=(const BrickCache&) = delete;
@@ -95,7 +96,7 @@ class BrickCache {
     v.degraded = degraded_ ? 1u : 0u;
     return v;
   }
-  BrickPool pool() { return BrickPool{texels_.data()}; }
+  BrickPool pool() { return BrickPool{texels_.data(), occupancy_.data()}; }
 
   // The counters (CacheCounter) as they are now (on the GPU: synchronises).
   void readCounters(uint32_t* out) const { ops_.read(counters_.data(), out, COUNTER_COUNT); }
@@ -113,9 +114,10 @@ class BrickCache {
   }
 
   MemoryReport memory() const {
-    return {{"brick_pool", bytesOf(texels_)},     {"indirection_table", bytesOf(entries_)},
-            {"inverse_table", bytesOf(inverse_)}, {"timestamps", bytesOf(timestamps_)},
-            {Ops::LRU_NAME, ops_.lruBytes()},     {"request_queue", bytesOf(requests_)}};
+    return {{"brick_pool", bytesOf(texels_)},         {"brick_occupancy", bytesOf(occupancy_)},
+            {"indirection_table", bytesOf(entries_)}, {"inverse_table", bytesOf(inverse_)},
+            {"timestamps", bytesOf(timestamps_)},     {Ops::LRU_NAME, ops_.lruBytes()},
+            {"request_queue", bytesOf(requests_)}};
   }
 
   // The raw tables, in the backend's memory (tests read the CPU ones).
@@ -138,6 +140,7 @@ class BrickCache {
   Buffer<uint32_t> entries_, timestamps_, counters_;
   Buffer<BrickKey> inverse_, requests_;
   Buffer<Rgba8> texels_;
+  Buffer<uint64_t> occupancy_;
   Ops ops_;
   TimelineView timeline_{};  // the frame's (beginFrame)
   const uint32_t* freeSlots_ = nullptr;

@@ -8,6 +8,7 @@
 
 #include "gvdp/base/atomics.h"
 #include "gvdp/cache/cache_ops.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/render/march.h"
 
 namespace gvdp::detail {
@@ -72,7 +73,8 @@ struct CachedAccess {
     if (loadRelaxed32(&cache.timestamps[slot]) != cache.frame)
       storeRelaxed32(&cache.timestamps[slot], cache.frame);
 #endif
-    return {BrickState::Resident, slot, level, brick};
+    // Written before the entry was published, read after its acquire load.
+    return {BrickState::Resident, slot, level, brick, 0, pool.loadOccupancy(slot)};
   }
 
   GVDP_HD bool degraded() const {
@@ -81,7 +83,9 @@ struct CachedAccess {
   }
 
   // The counts of the march so far into the frame's; once per march.
-  GVDP_HD void addCounts() const { addMarchCounts(cache, samples, lookups, skips); }
+  GVDP_HD void addCounts() const {
+    addMarchCounts(cache, samples, lookups, skips);
+  }
 
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
     ++lookups;
@@ -114,10 +118,14 @@ struct CachedAccess {
     return {BrickState::Stop, 0u, level, brick};
   }
 
+  // A sample in a clear cell is zero without a read: trilinear() of its eight zero samples.
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
     ++samples;
     Vec3f v = p / lod.voxelSize(b.level);
     Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
+    Vec3f local{v.x - static_cast<float>(origin.x), v.y - static_cast<float>(origin.y),
+                v.z - static_cast<float>(origin.z)};
+    if (!(b.occupancy & occupancyBit(local))) return {0.0f, 0.0f, 0.0f, 0.0f};
     return pool.sample(b.slot, origin, v);
   }
 };

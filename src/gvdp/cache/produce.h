@@ -87,8 +87,10 @@ GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const Cach
 
 // Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with
 // PER * size >= BRICK_SAMPLE_COUNT): the leader takes a slot (none for an empty brick), each
-// member writes its samples staged(k, sample) to it and fences (device scope: other blocks
-// read the pool), and the leader publishes the entry once every member's writes are fenced.
+// member writes its samples staged(k, sample) to it, the group ORs the occupancy cells of its
+// nonzero samples (brick_pool.h) and the leader writes them, each member fences (device scope:
+// other blocks read the pool), and the leader publishes the entry once every member's writes
+// are fenced.
 template <int PER, class Scope, class P, class Staged>
 GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, const CacheView& cache,
                                      const BrickPool& pool, const BrickKey& key, bool empty,
@@ -97,11 +99,19 @@ GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, cons
   if (group.rank() == 0) slot = empty ? MAX_SLOTS : takeFreeSlot(cache);
   slot = group.broadcast(slot);
   if (!empty && slot != MAX_SLOTS) {
+    uint64_t cells = 0;
     GVDP_UNROLL
     for (int k = 0; k < PER; ++k) {
       int s = group.rank() + k * group.size();
-      if (s < BRICK_SAMPLE_COUNT) pool.write(slot, s, staged(k, s));
+      if (s < BRICK_SAMPLE_COUNT) {
+        Rgba8 value = staged(k, s);
+        pool.write(slot, s, value);
+        if (value != 0u) cells |= occupancyCellsOf(brickSampleIndex(s));
+      }
     }
+    uint32_t low = group.any(static_cast<uint32_t>(cells));
+    uint32_t high = group.any(static_cast<uint32_t>(cells >> 32));
+    if (group.rank() == 0) pool.occupancy[slot] = uint64_t{high} << 32 | low;
 #if GVDP_IS_GPU_CODE
     __threadfence();
 #endif

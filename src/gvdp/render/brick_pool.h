@@ -12,8 +12,39 @@
 
 namespace gvdp::detail {
 
+// A resident brick's occupancy: 4^3 cells of 2^3 voxels, bit x + 4 y + 16 z set when some sample
+// that trilinear() may read for a position in the cell (the cell's voxels and one more on each
+// side: sample indices 2c..2c+3 per axis) is not zero. A position in a clear cell samples zero
+// exactly, so the march need not read the brick there (cache/cached_access.h).
+constexpr int OCCUPANCY_CELLS = 4;  // per axis
+
+// The cell of a position v in voxel units from the brick's origin, clamped: a position on a
+// face (v = 0 or 8, within rounding) reads samples of the cell it is clamped to.
+GVDP_HD GVDP_INLINE uint64_t occupancyBit(Vec3f v) {
+  auto cell = [](float a) {
+    int c = static_cast<int>(floorf(a * 0.5f));
+    return c < 0 ? 0 : c > OCCUPANCY_CELLS - 1 ? OCCUPANCY_CELLS - 1 : c;
+  };
+  return uint64_t{1} << (cell(v.x) + OCCUPANCY_CELLS * (cell(v.y) + OCCUPANCY_CELLS * cell(v.z)));
+}
+
+// The cells whose reads include sample (x, y, z) (indices 0..9 of the 10^3 with the border):
+// along an axis, cells max(0, (i - 2) / 2) to min(3, i / 2).
+GVDP_HD GVDP_INLINE uint64_t occupancyCellsOf(Vec3i i) {
+  auto lo = [](int a) { return a < 2 ? 0 : (a - 2) / 2; };
+  auto hi = [](int a) { return a / 2 > OCCUPANCY_CELLS - 1 ? OCCUPANCY_CELLS - 1 : a / 2; };
+  uint64_t row = 0;  // the x cells
+  for (int x = lo(i.x); x <= hi(i.x); ++x) row |= uint64_t{1} << x;
+  uint64_t bits = 0;
+  for (int z = lo(i.z); z <= hi(i.z); ++z)
+    for (int y = lo(i.y); y <= hi(i.y); ++y)
+      bits |= row << (OCCUPANCY_CELLS * (y + OCCUPANCY_CELLS * z));
+  return bits;
+}
+
 struct BrickPool {
-  Rgba8* texels;  // slot * BRICK_SAMPLE_COUNT + (z * 10 + y) * 10 + x
+  Rgba8* texels;        // slot * BRICK_SAMPLE_COUNT + (z * 10 + y) * 10 + x
+  uint64_t* occupancy;  // per slot (occupancyBit), written with the samples, before the entry
 
   GVDP_HD static Rgba8 load(const Rgba8* p) {
 #if GVDP_IS_GPU_CODE
@@ -31,6 +62,14 @@ struct BrickPool {
                   ((z - origin.z + 1) * BRICK_SAMPLES + (y - origin.y + 1)) * BRICK_SAMPLES +
                   (x - origin.x + 1));
     });
+  }
+
+  GVDP_HD uint64_t loadOccupancy(uint32_t slot) const {
+#if GVDP_IS_GPU_CODE
+    return __ldcg(reinterpret_cast<const unsigned long long*>(occupancy + slot));
+#else
+    return occupancy[slot];
+#endif
   }
 
   GVDP_HD void write(uint32_t slot, int sample, Rgba8 value) const {

@@ -48,7 +48,8 @@ GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, const LevelSpan&
 
 enum class BrickState : uint8_t { Resident, Empty, Stop };
 
-// What to do with the brick under a sample: sample `slot` (Resident) or skip the cube of the
+// What to do with the brick under a sample: sample `slot` (Resident; its clear cells sample
+// zero, `occupancy`) or skip the cube of the
 // bricks within `radius` of `brick` (Empty), both at `level`, which is the sample's level or a
 // coarser one (an EMPTY ancestor, or a resident ancestor standing in for a missing brick in a
 // degraded frame).
@@ -56,8 +57,9 @@ struct BrickLookup {
   BrickState state;
   uint32_t slot;
   int level;
-  Vec3i brick;     // local brick coordinates at `level`
-  int radius = 0;  // Empty: the cube's radius in bricks
+  Vec3i brick;                        // local brick coordinates at `level`
+  int radius = 0;                     // Empty: the cube's radius in bricks
+  uint64_t occupancy = ~uint64_t{0};  // Resident: the brick's occupied cells (brick_pool.h)
 };
 
 enum class MarchResult : uint8_t { Finished, Stopped };

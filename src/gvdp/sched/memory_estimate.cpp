@@ -18,6 +18,7 @@ constexpr uint32_t PT_CUDA_WORKER_WARPS = 4096;
 MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
   size_t k = poolBricksOf(o), pixels = static_cast<size_t>(f.pixelCount());
   MemoryReport m = {{"brick_pool", k * BRICK_SAMPLE_COUNT * sizeof(Rgba8)},
+                    {"brick_occupancy", k * sizeof(uint64_t)},
                     {"indirection_table", clipmapOf(f).entryCount() * sizeof(uint32_t)},
                     {"inverse_table", k * sizeof(BrickKey)},
                     {"timestamps", k * sizeof(uint32_t)}};
