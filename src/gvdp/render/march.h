@@ -67,12 +67,11 @@ enum class MarchResult : uint8_t { Finished, Stopped };
 // Access provides:
 //   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level
 //   Vec4f sample(const BrickLookup&, Vec3f p)    p: local position of the sample
-// A resident lookup is reused while the samples stay in the same brick.
+// A resident lookup is reused while the samples stay in the same brick of its level (a coarser
+// stand-in, in a degraded frame, is looked up again at every sample).
 template <class Access>
 GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
-  BrickLookup resident{BrickState::Stop, 0u, -1, {0, 0, 0}};
-  int residentLevel = -1;  // the sample level and brick `resident` was looked up for
-  Vec3i residentBrick{0, 0, 0};
+  BrickLookup resident{BrickState::Resident, 0u, -1, {0, 0, 0}};
   int spanLevel = -1;  // the level `span` describes
   LevelSpan span{};
   Vec3f invD = inverseDirection(ray);
@@ -92,7 +91,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
     // (neighbouring bricks share their border samples, and EMPTY bounds reach a voxel beyond).
     Vec3i brick = floorToInt(p * span.bricksPerUnit);
     BrickLookup b = resident;
-    if (residentLevel != s.level || !(brick == residentBrick)) {
+    if (resident.level != s.level || !(brick == resident.brick)) {
       b = access.lookup(s.level, brick);
       if (b.state == BrickState::Stop) return MarchResult::Stopped;
       if (b.state == BrickState::Empty) {
@@ -111,8 +110,6 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
         continue;
       }
       resident = b;
-      residentLevel = s.level;
-      residentBrick = brick;
     }
     Vec4f c = access.sample(b, p);
     float k = 1.0f - s.colour.w;
