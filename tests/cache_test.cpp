@@ -151,52 +151,71 @@ TEST(Cache, BrickBordersAreSeamless) {
   EXPECT_GT(tested, 50) << "no pair of resident neighbours found";
 }
 
-TEST(Cache, EmptyCodesAreDistinctEntries) {
-  for (int code = 0; code <= MAX_EMPTY_CODE; ++code) {
-    uint32_t e = emptyEntry(code);
-    EXPECT_TRUE(isEmptyEntry(e)) << code;
-    EXPECT_FALSE(isSlot(e)) << code;
-    EXPECT_EQ(productionTaskOf(e), -1) << code;
+TEST(Cache, EmptyEntriesAreDistinctAndDecode) {
+  std::mt19937 rng(4);
+  for (int i = 0; i < 2000; ++i) {
+    EmptyReachCodes c{};
+    for (int& f : c.face) f = static_cast<int>(rng() % (MAX_EMPTY_REACH_CODE + 1u));
+    if (i == 1) c = {{15, 15, 15, 15, 15, 15}};
+    uint32_t e = emptyEntry(c);
+    ASSERT_TRUE(isEmptyEntry(e)) << e;
+    EXPECT_FALSE(isSlot(e));
+    EXPECT_EQ(productionTaskOf(e), -1);
     EXPECT_NE(e, ENTRY_MISSING);
     EXPECT_NE(e, ENTRY_IN_PRODUCTION);
-    EXPECT_EQ(emptyRadius(e), (1 << code) - 1);
+    EmptyReach r = emptyReach(e);
+    int reach[6] = {r.below.x, r.below.y, r.below.z, r.above.x, r.above.y, r.above.z};
+    for (int f = 0; f < 6; ++f) EXPECT_EQ(reach[f], emptyReachOfCode(c.face[f])) << f;
   }
-  EXPECT_EQ(emptyEntry(0), ENTRY_EMPTY);
-  for (uint32_t e : {ENTRY_MISSING, ENTRY_IN_PRODUCTION, emptyEntry(MAX_EMPTY_CODE) - 1u, 0u,
-                     MAX_SLOTS - 1u, ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS - 1u})
+  // The codes' reaches grow, by at most 1.5x from 2 on, up to 192 bricks.
+  for (int c = 1; c <= MAX_EMPTY_REACH_CODE; ++c) {
+    int lo = emptyReachOfCode(c - 1), hi = emptyReachOfCode(c);
+    EXPECT_GT(hi, lo) << c;
+    if (lo >= 2) {
+      EXPECT_LE(2 * hi, 3 * lo) << c;
+    }
+  }
+  EXPECT_EQ(emptyReachOfCode(MAX_EMPTY_REACH_CODE), 192);
+  EXPECT_EQ(emptyEntry(EmptyReachCodes{}), ENTRY_EMPTY);
+  for (uint32_t e : {ENTRY_MISSING, ENTRY_IN_PRODUCTION, ENTRY_EMPTY - 1u, 0u, MAX_SLOTS - 1u,
+                     ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS - 1u, ENTRY_EMPTY + 0x1000000u})
     EXPECT_FALSE(isEmptyEntry(e)) << e;
 }
 
-// The cube an EMPTY code names is empty: every brick in it, evaluated sample by sample, would be
-// EMPTY (all samples flagged empty and transparent), for each scene with a box bound.
-TEST(Cache, EmptyCubeCodesNameEmptyBricks) {
+// The box an EMPTY entry names is empty: every brick in it, evaluated sample by sample, would be
+// EMPTY (all samples flagged empty and transparent), for each scene with a box bound; and the
+// boxes stretch (some face reaches further than the one across from it).
+TEST(Cache, EmptyBoxesNameEmptyBricks) {
   std::mt19937 rng(5);
-  for (const char* name : {"perlin", "fbm", "forest"}) {
+  for (const char* name : {"perlin", "fbm", "forest", "random-spheres"}) {
     const BuiltinScene& world = findScene(name).world;
-    int cubes = 0, bigger = 0;
-    for (int i = 0; i < 400 && cubes < 60; ++i) {
+    int boxes = 0, bigger = 0, stretched = 0;
+    for (int i = 0; i < 400 && boxes < 60; ++i) {
       int level = static_cast<int>(rng() % 8u);
       auto coord = [&](int lo, int hi) { return lo + static_cast<int>(rng() % (hi - lo)); };
       BrickKey key{{coord(-40, 40), coord(-4, 400) >> level, coord(-40, 40)}, level};
       if (!brickBoundedEmpty(world, key)) continue;
-      int code = emptyCubeCode(world, key);
-      if (code == 0) continue;
-      ++cubes;
-      bigger += code > 1;
-      int r = emptyRadius(emptyEntry(code));
-      for (int k = 0; k < 3; ++k) {  // a corner of the cube, then two bricks inside it
-        Vec3i d =
-            k == 0 ? Vec3i{r, -r, r} : Vec3i{coord(-r, r + 1), coord(-r, r + 1), coord(-r, r + 1)};
+      EmptyReach r = emptyReach(emptyEntryOf(ThreadScope{}, world, key));
+      if (r.below == Vec3i{0, 0, 0} && r.above == Vec3i{0, 0, 0}) continue;
+      ++boxes;
+      bigger += r.below.x + r.above.x + r.below.y + r.above.y + r.below.z + r.above.z > 6;
+      stretched += !(r.below == r.above);
+      for (int k = 0; k < 4; ++k) {  // two opposite corners of the box, then two bricks inside it
+        auto in = [&](int below, int above) { return coord(-below, above + 1); };
+        Vec3i d = k == 0   ? Vec3i{-r.below.x, -r.below.y, -r.below.z}
+                  : k == 1 ? r.above
+                           : Vec3i{in(r.below.x, r.above.x), in(r.below.y, r.above.y),
+                                   in(r.below.z, r.above.z)};
         BrickKey inside{key.brick + d, level};
         for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
           VoxelSample v = produceBrickSample(world, inside, s);
-          ASSERT_TRUE(v.empty && v.rgba == 0u)
-              << name << " level " << level << " code " << code << " sample " << s;
+          ASSERT_TRUE(v.empty && v.rgba == 0u) << name << " level " << level << " sample " << s;
         }
       }
     }
-    EXPECT_GE(cubes, 20) << name << ": too few empty cubes found";
-    EXPECT_GT(bigger, 0) << name << ": no cube beyond radius 1";
+    EXPECT_GE(boxes, 20) << name << ": too few empty boxes found";
+    EXPECT_GT(bigger, 0) << name << ": no box beyond one brick per face";
+    EXPECT_GT(stretched, 0) << name << ": no box reaching further on one side";
   }
 }
 

@@ -17,14 +17,17 @@ TEST(Math, FloorDivAndModMatchMathematicalDefinitions) {
     }
 }
 
-TEST(Math, BoxExitFromInside) {
+// The planes are the faces of a box the ray leaves: the first it meets is the exit.
+TEST(Math, PlanesExitLeavesABox) {
   Ray r{{0.5f, 0.5f, 0.5f}, normalize(Vec3f{1.0f, 0.0f, 0.0f})};
-  EXPECT_FLOAT_EQ(boxExit(r, inverseDirection(r), {0, 0, 0}, {1, 1, 1}), 0.5f);
+  EXPECT_FLOAT_EQ(planesExit(r, inverseDirection(r), {1, 1, 1}), 0.5f);
   Ray diag{{0, 0, 0}, normalize(Vec3f{1, 1, 1})};
-  EXPECT_NEAR(boxExit(diag, inverseDirection(diag), {-1, -1, -1}, {2, 2, 2}),
-              2.0f * std::sqrt(3.0f), 1e-5f);
+  EXPECT_NEAR(planesExit(diag, inverseDirection(diag), {2, 2, 2}), 2.0f * std::sqrt(3.0f), 1e-5f);
   Ray neg{{0.25f, 0.5f, 0.5f}, {-1.0f, 0.0f, 0.0f}};
-  EXPECT_FLOAT_EQ(boxExit(neg, inverseDirection(neg), {0, 0, 0}, {1, 1, 1}), 0.25f);
+  EXPECT_FLOAT_EQ(planesExit(neg, inverseDirection(neg), {0, 1, 1}), 0.25f);
+  Ray tilted{{0.5f, 0.5f, 0.5f}, normalize(Vec3f{1.0f, -2.0f, 0.5f})};
+  float t = planesExit(tilted, inverseDirection(tilted), {1, 0, 1});  // leaves through y = 0
+  EXPECT_NEAR(tilted.o.y + t * tilted.d.y, 0.0f, 1e-6f);
 }
 
 TEST(Math, NormalizeAndCross) {

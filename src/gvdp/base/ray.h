@@ -12,18 +12,18 @@ struct Ray {
   Vec3f d;  // unit direction
 };
 
-// The reciprocal of a ray's direction, once per ray: boxExit multiplies by it (a zero
+// The reciprocal of a ray's direction, once per ray: planesExit multiplies by it (a zero
 // component gives an infinity of its sign, as the division would).
 GVDP_HD GVDP_INLINE Vec3f inverseDirection(const Ray& r) {
   return {1.0f / r.d.x, 1.0f / r.d.y, 1.0f / r.d.z};
 }
 
-// Distance along the ray at which it leaves the axis-aligned box [lo, hi] (slab method), with
-// invD = inverseDirection(r). The ray is assumed to be inside or in front of the box.
-GVDP_HD GVDP_INLINE float boxExit(const Ray& r, Vec3f invD, Vec3f lo, Vec3f hi) {
-  float tx = (r.d.x >= 0.0f ? hi.x - r.o.x : lo.x - r.o.x) * invD.x;
-  float ty = (r.d.y >= 0.0f ? hi.y - r.o.y : lo.y - r.o.y) * invD.y;
-  float tz = (r.d.z >= 0.0f ? hi.z - r.o.z : lo.z - r.o.z) * invD.z;
+// Distance along the ray at which it meets the first of three axis-aligned planes ahead of it
+// (x = exit.x, y = exit.y, z = exit.z), with invD = inverseDirection(r).
+GVDP_HD GVDP_INLINE float planesExit(const Ray& r, Vec3f invD, Vec3f exit) {
+  float tx = (exit.x - r.o.x) * invD.x;
+  float ty = (exit.y - r.o.y) * invD.y;
+  float tz = (exit.z - r.o.z) * invD.z;
   // A zero direction component gives +inf (or NaN for 0 * inf on a face): fminf ignores NaN.
   return fminf(tx, fminf(ty, tz));
 }

@@ -1,6 +1,6 @@
 // Indirection-table entries and brick keys (paper 3.2). An entry is a uint32: a brick-pool slot,
-// or a state above every slot: MISSING, EMPTY (with the radius of the empty cube of bricks
-// around it: emptyEntry), IN_PRODUCTION, or (pt) in production by the production task
+// or a state above every slot: MISSING, EMPTY (with the empty box of bricks around it:
+// emptyEntry), IN_PRODUCTION, or (pt) in production by the production task
 // PRODUCTION_TASK + id, whose rays wait on that task's list. A BrickKey names a
 // brick by level and global brick coordinates (the inverse table stores one per slot).
 #pragma once
@@ -8,34 +8,44 @@
 #include <cstdint>
 
 #include "gvdp/base/vecmath.h"
+#include "gvdp/render/empty_box.h"
 
 namespace gvdp::detail {
 
 constexpr uint32_t ENTRY_MISSING = 0xffffffffu;
 constexpr uint32_t ENTRY_IN_PRODUCTION = 0xfffffffeu;
-constexpr uint32_t ENTRY_EMPTY = 0xfffffffdu;
 constexpr uint32_t MAX_SLOTS = 0x80000000u;  // slots are below every special value
 constexpr uint32_t ENTRY_PRODUCTION_TASK = MAX_SLOTS;
-constexpr uint32_t MAX_PRODUCTION_TASKS = 0x7ffffff0u;
+constexpr uint32_t MAX_PRODUCTION_TASKS = 0x70000000u;
 
-// An EMPTY entry of code k (0..MAX_EMPTY_CODE) says more than "this brick is empty": every brick
-// of its level within emptyRadius(k) = 2^k - 1 bricks of it (a cube of side 2^(k+1) - 1) is
-// empty too, by the producer's box bound (cache/produce.h: emptyCubeCode), so a ray skips the
-// whole cube with one lookup. Code 0 is the plain EMPTY brick.
-constexpr int MAX_EMPTY_CODE = 12;
-static_assert(ENTRY_EMPTY - MAX_EMPTY_CODE >= ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS,
-              "EMPTY codes overlap the production-task names");
+// An EMPTY entry says more than "this brick is empty": the box of bricks of its level that
+// reaches below[a] bricks down and above[a] bricks up from it along each axis a is empty too, by
+// the producer's box bound (cache/produce.h: emptyEntryOf), so a ray leaves the whole box with
+// one lookup. The entry is ENTRY_EMPTY with the box's reach codes (render/empty_box.h) in its
+// low 24 bits; ENTRY_EMPTY itself is the plain EMPTY brick.
+constexpr uint32_t ENTRY_EMPTY = 0xf0000000u;
+constexpr uint32_t EMPTY_CODES_MASK = 0xffffffu;
+static_assert(ENTRY_EMPTY >= ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS,
+              "EMPTY entries overlap the production-task names");
+static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_IN_PRODUCTION,
+              "EMPTY entries overlap the states");
 
-GVDP_HD GVDP_INLINE uint32_t emptyEntry(int code) {
-  return ENTRY_EMPTY - static_cast<uint32_t>(code);
+GVDP_HD GVDP_INLINE uint32_t emptyEntry(const EmptyReachCodes& c) {
+  return ENTRY_EMPTY | c.packed();
 }
 
 GVDP_HD GVDP_INLINE bool isEmptyEntry(uint32_t entry) {
-  return entry <= ENTRY_EMPTY && entry >= ENTRY_EMPTY - MAX_EMPTY_CODE;
+  return (entry & ~EMPTY_CODES_MASK) == ENTRY_EMPTY;
 }
 
-GVDP_HD GVDP_INLINE int emptyRadius(uint32_t entry) {
-  return (1 << (ENTRY_EMPTY - entry)) - 1;
+// The empty box an EMPTY entry names, in bricks from its own: [brick - below, brick + above].
+struct EmptyReach {
+  Vec3i below, above;
+};
+
+GVDP_HD GVDP_INLINE EmptyReach emptyReach(uint32_t entry) {
+  auto r = [&](int face) { return emptyReachThrough(entry, face); };
+  return {{r(0), r(1), r(2)}, {r(3), r(4), r(5)}};
 }
 
 GVDP_HD GVDP_INLINE bool isSlot(uint32_t entry) {

@@ -71,22 +71,21 @@ GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
   return i < c.freeCount ? c.freeSlots[i] : MAX_SLOTS;
 }
 
-// Algorithm 2, the end: publish what production found, an empty brick (its EMPTY code,
-// brick_key.h: emptyEntry) or a slot (emptyCode -1). The samples of a resident brick must be
-// written (and fenced, by the caller on the GPU) before this.
-GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, int emptyCode,
-                                      uint32_t slot) {
+// Algorithm 2, the end: publish what production found, an empty brick (its EMPTY entry,
+// brick_key.h: emptyEntry), a slot, or MAX_SLOTS when no slot was left. The samples of a
+// resident brick must be written (and fenced, by the caller on the GPU) before this.
+GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, uint32_t found) {
   uint32_t index = c.clipmap.entryIndex(key.level, key.brick);
-  if (emptyCode >= 0) {
-    storeRelease32(&c.entries[index], emptyEntry(emptyCode));
+  if (isEmptyEntry(found)) {
+    storeRelease32(&c.entries[index], found);
     atomicAdd32(&c.counters[COUNTER_EMPTY], 1u);
-  } else if (slot == MAX_SLOTS) {
+  } else if (found == MAX_SLOTS) {
     storeRelease32(&c.entries[index], ENTRY_MISSING);  // retried after a refill, or degraded
     atomicAdd32(&c.counters[COUNTER_FAILED], 1u);
   } else {
-    c.inverse[slot] = key;
-    storeRelaxed32(&c.timestamps[slot], c.frame);
-    storeRelease32(&c.entries[index], slot);
+    c.inverse[found] = key;
+    storeRelaxed32(&c.timestamps[found], c.frame);
+    storeRelease32(&c.entries[index], found);
     atomicAdd32(&c.counters[COUNTER_PRODUCED], 1u);
   }
 }

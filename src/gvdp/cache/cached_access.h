@@ -1,5 +1,5 @@
 // The cached side of Algorithm 1: how a ray reads the clipmap. A resident brick is sampled from
-// the pool (and its timestamp touched); an EMPTY brick is skipped with the empty cube its entry
+// the pool (and its timestamp touched); an EMPTY brick is skipped with the empty box its entry
 // names (brick_key.h: emptyEntry), a missing one under an EMPTY coarser ancestor with that
 // ancestor's; a MISSING brick is claimed with a CAS (the winner queues its production) and the ray
 // stops, as on IN_PRODUCTION. In a degraded frame (no free slot left) nothing is produced: the
@@ -44,11 +44,22 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
   atomicAdd64(&c[MARCH_SKIPS], skips);
 }
 
-// Pool provides: Vec4f sample(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
-// coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates.
+// Pool provides: Vec4f sample<READS>(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
+// coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates, and
+// uint64_t loadOccupancy<READS>(slot) (render/brick_pool.h).
 // OnMiss(cache, level, globalBrick, entry) runs when the entry was MISSING: it claims the brick
 // with a CAS from MISSING (one thread wins) and the winner starts its production.
-template <class Pool, class OnMiss = QueueRequest>
+//
+// READS says whether bricks may be published while the march's kernel runs (docs/DESIGN.md,
+// "Memory model"). Coherent (dp, pt): an entry is read with an acquire load, which makes the
+// brick's samples and occupancy, written before the producer's release (publishBrick), visible
+// to the reads after it; the pool is read through L2. ReadOnly (sp, graph): production runs in
+// kernels of its own, ordered before the render kernel by the stream or the graph, so every
+// brick the kernel can find resident was published before it began; the only entry writes
+// during the kernel are claims (MISSING to IN_PRODUCTION), which publish nothing. A relaxed load
+// then suffices (an acquire at device scope also invalidates the SM's L1), and the pool, read-only
+// for the kernel's life, is read through L1.
+template <class Pool, class OnMiss = QueueRequest, PoolReads READS = PoolReads::Coherent>
 struct CachedAccess {
   const CacheView& cache;
   const Pool& pool;
@@ -60,7 +71,14 @@ struct CachedAccess {
   // An ancestor's entry; MISSING outside its window (never read: it would alias another brick).
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
     uint32_t i = cache.clipmap.windowEntry(level, cache.clipmap.globalBrick(level, localBrick));
-    return i == Clipmap::NOT_IN_WINDOW ? ENTRY_MISSING : loadAcquire32(&cache.entries[i]);
+    return i == Clipmap::NOT_IN_WINDOW ? ENTRY_MISSING : loadEntry(&cache.entries[i]);
+  }
+
+  GVDP_HD static uint32_t loadEntry(const uint32_t* entry) {
+    if constexpr (READS == PoolReads::ReadOnly)
+      return loadRelaxed32(entry);
+    else
+      return loadAcquire32(entry);
   }
 
   // A resident brick, its timestamp set to this frame: on the GPU by a plain store (the
@@ -74,7 +92,12 @@ struct CachedAccess {
       storeRelaxed32(&cache.timestamps[slot], cache.frame);
 #endif
     // Written before the entry was published, read after its acquire load.
-    return {BrickState::Resident, slot, level, brick, 0, pool.loadOccupancy(slot)};
+    return {BrickState::Resident, slot, level, brick, pool.template loadOccupancy<READS>(slot)};
+  }
+
+  // An EMPTY brick, with the box its entry names.
+  GVDP_HD static BrickLookup empty(int level, Vec3i brick, uint32_t entry) {
+    return {BrickState::Empty, 0u, level, brick, ~uint64_t{0}, entry & EMPTY_CODES_MASK};
   }
 
   GVDP_HD bool degraded() const {
@@ -101,15 +124,15 @@ struct CachedAccess {
     uint32_t index = cache.clipmap.windowEntry(level, g);
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
-    uint32_t e = loadAcquire32(entry);
+    uint32_t e = loadEntry(entry);
     if (isSlot(e)) return resident(e, level, brick);
-    if (isEmptyEntry(e)) return {BrickState::Empty, 0u, level, brick, emptyRadius(e)};
+    if (isEmptyEntry(e)) return empty(level, brick, e);
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
       a = {floorDiv(a.x, 2), floorDiv(a.y, 2), floorDiv(a.z, 2)};
       uint32_t ea = entryAt(up, a);
-      if (isEmptyEntry(ea)) return {BrickState::Empty, 0u, up, a, emptyRadius(ea)};
+      if (isEmptyEntry(ea)) return empty(up, a, ea);
       if (isSlot(ea) && degraded()) return resident(ea, up, a);
     }
     if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
@@ -126,7 +149,7 @@ struct CachedAccess {
     Vec3f local{v.x - static_cast<float>(origin.x), v.y - static_cast<float>(origin.y),
                 v.z - static_cast<float>(origin.z)};
     if (!(b.occupancy & occupancyBit(local))) return {0.0f, 0.0f, 0.0f, 0.0f};
-    return pool.sample(b.slot, origin, v);
+    return pool.template sample<READS>(b.slot, origin, v);
   }
 };
 

@@ -38,50 +38,98 @@ GVDP_HD GVDP_INLINE VoxelSample produceBrickSample(const P& producer, const Bric
   return producer.voxel(brickSampleCentre(key, sample, producer.voxelSize0()), vs);
 }
 
-// The producer's emptiness bound for the box of the samples of the cube of bricks within
-// `radius` of a brick, widened by one voxel (the reach of the empty-flag contract,
-// world/producer.h). Radius 0: true makes the brick EMPTY unevaluated.
+// The producer's emptiness bound for the box of the samples of the bricks from key.brick - below
+// to key.brick + above, widened by one voxel (the reach of the empty-flag contract,
+// world/producer.h). below = above = 0: true makes the brick EMPTY unevaluated.
 template <class P>
-GVDP_HD GVDP_INLINE bool cubeBoundedEmpty(const P& producer, const BrickKey& key, int radius) {
+GVDP_HD GVDP_INLINE bool boxBoundedEmpty(const P& producer, const BrickKey& key, Vec3i below,
+                                         Vec3i above) {
   double vs = ldexp(static_cast<double>(producer.voxelSize0()), key.level);
-  Vec3i r{radius, radius, radius};
-  Vec3d lo = brickSampleCentre({key.brick - r, key.level}, 0, producer.voxelSize0());
-  Vec3d hi =
-      brickSampleCentre({key.brick + r, key.level}, BRICK_SAMPLE_COUNT - 1, producer.voxelSize0());
+  Vec3d lo = brickSampleCentre({key.brick - below, key.level}, 0, producer.voxelSize0());
+  Vec3d hi = brickSampleCentre({key.brick + above, key.level}, BRICK_SAMPLE_COUNT - 1,
+                               producer.voxelSize0());
   return producer.emptyBox(lo - Vec3d{vs, vs, vs}, hi + Vec3d{vs, vs, vs}, static_cast<float>(vs));
 }
 
 template <class P>
 GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& key) {
-  return cubeBoundedEmpty(producer, key, 0);
+  return boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0});
 }
 
-// The EMPTY code of an empty brick (brick_key.h: emptyEntry): the largest k whose cube of
-// radius 2^k - 1 bricks the producer's bound clears, 0 if none but the brick itself.
-template <class P>
-GVDP_HD GVDP_INLINE int emptyCubeCode(const P& producer, const BrickKey& key) {
-  int code = 0;
-  while (code < MAX_EMPTY_CODE && cubeBoundedEmpty(producer, key, (2 << code) - 1)) ++code;
-  return code;
+// The reach codes with `faces` (a bit per face) one step further: 0 to 1, then two codes
+// (about twice the reach), up to the last.
+GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces) {
+  for (int f = 0; f < 6; ++f) {
+    if (!(faces >> f & 1u)) continue;
+    int next = c.face[f] == 0 ? 1 : c.face[f] + 2;
+    c.face[f] = next < MAX_EMPTY_REACH_CODE ? next : MAX_EMPTY_REACH_CODE;
+  }
+  return c;
 }
 
-// A brick found EMPTY may lie in a larger box the producer's bound clears: its ancestors are
-// marked EMPTY, each exactly as its own production would have found it (brickBoundedEmpty and
-// emptyCubeCode), up to the first the bound does not clear or that is not MISSING (claimed,
-// produced or marked already: one CAS each, so a brick in production keeps its state and its
-// claimant loses nothing). A ray that meets a missing brick under one skips it unproduced
-// (cached_access.h).
 template <class P>
-GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const CacheView& cache,
-                                                   BrickKey key) {
-  while (key.level + 1 < cache.clipmap.levels) {
+GVDP_HD GVDP_INLINE bool codesBoundedEmpty(const P& producer, const BrickKey& key,
+                                           const EmptyReachCodes& codes) {
+  EmptyReach r = emptyReach(emptyEntry(codes));
+  return boxBoundedEmpty(producer, key, r.below, r.above);
+}
+
+// The EMPTY entry of an empty brick (brick_key.h: emptyEntry), by every member of the group: its
+// box grown in rounds. In a round each face still growing tries its next reach (member f tests
+// face f) and the faces the producer's bound clears grow together if it clears their combined
+// box too, else the first of them alone; a face stops at its first refusal. The box stretches
+// along the empty directions: up and sideways above a terrain, along a cave. A round costs the
+// group two bound evaluations, whatever its size.
+template <class Scope, class P>
+GVDP_HD GVDP_INLINE uint32_t emptyEntryOf(const Scope& group, const P& producer,
+                                          const BrickKey& key) {
+  EmptyReachCodes codes{};
+  uint32_t growing = 0x3fu;  // one bit per face
+  while (growing != 0u) {
+    uint32_t cleared = 0u;
+    for (int f = group.rank(); f < 6; f += group.size())
+      if ((growing >> f & 1u) && codesBoundedEmpty(producer, key, grownCodes(codes, 1u << f)))
+        cleared |= 1u << f;
+    cleared = group.any(cleared);
+    uint32_t take = cleared;
+    if ((cleared & (cleared - 1u)) != 0u) {  // more than one face: all of them, or the first
+      uint32_t together = 0u;
+      if (group.rank() == 0)
+        together = codesBoundedEmpty(producer, key, grownCodes(codes, cleared));
+      if (group.broadcast(together) == 0u) take = cleared & (~cleared + 1u);
+    }
+    codes = grownCodes(codes, take);
+    growing = 0u;
+    for (int f = 0; f < 6; ++f)
+      if ((cleared >> f & 1u) && codes.face[f] < MAX_EMPTY_REACH_CODE) growing |= 1u << f;
+  }
+  return emptyEntry(codes);
+}
+
+// An empty brick is published EMPTY with the box the group grows for it (emptyEntryOf), then its
+// ancestors are marked EMPTY, each exactly as its own production would have found it
+// (brickBoundedEmpty and emptyEntryOf), up to the first the producer's bound does not clear or
+// that is not MISSING (claimed, produced or marked already: one CAS each, so a brick in
+// production keeps its state and its claimant loses nothing). A ray that meets a missing brick
+// under one skips it unproduced (cached_access.h).
+template <class Scope, class P>
+GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, const CacheView& cache,
+                                      BrickKey key) {
+  uint32_t index = Clipmap::NOT_IN_WINDOW;  // of an ancestor
+  for (;;) {
+    uint32_t entry = emptyEntryOf(group, producer, key);
+    uint32_t marked = 1u;
+    if (group.rank() == 0) {
+      if (index == Clipmap::NOT_IN_WINDOW)
+        publishBrick(cache, key, entry);
+      else
+        marked = atomicCas32(&cache.entries[index], ENTRY_MISSING, entry) == ENTRY_MISSING;
+    }
+    if (group.broadcast(marked) == 0u || key.level + 1 >= cache.clipmap.levels) return;
     key = {{floorDiv(key.brick.x, 2), floorDiv(key.brick.y, 2), floorDiv(key.brick.z, 2)},
            key.level + 1};
-    uint32_t index = cache.clipmap.windowEntry(key.level, key.brick);
+    index = cache.clipmap.windowEntry(key.level, key.brick);
     if (index == Clipmap::NOT_IN_WINDOW || !brickBoundedEmpty(producer, key)) return;
-    uint32_t* entry = &cache.entries[index];
-    uint32_t marked = emptyEntry(emptyCubeCode(producer, key));
-    if (atomicCas32(entry, ENTRY_MISSING, marked) != ENTRY_MISSING) return;
   }
 }
 
@@ -90,7 +138,7 @@ GVDP_HD GVDP_INLINE void markBoundedEmptyAncestors(const P& producer, const Cach
 // member writes its samples staged(k, sample) to it, the group ORs the occupancy cells of its
 // nonzero samples (brick_pool.h) and the leader writes them, each member fences (device scope:
 // other blocks read the pool), and the leader publishes the entry once every member's writes
-// are fenced.
+// are fenced; an empty brick is published by the group (publishEmpty).
 template <int PER, class Scope, class P, class Staged>
 GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, const CacheView& cache,
                                      const BrickPool& pool, const BrickKey& key, bool empty,
@@ -117,10 +165,10 @@ GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, cons
 #endif
   }
   group.sync();
-  if (group.rank() == 0) {
-    publishBrick(cache, key, empty ? emptyCubeCode(producer, key) : -1, slot);
-    if (empty) markBoundedEmptyAncestors(producer, cache, key);
-  }
+  if (empty)
+    publishEmpty(group, producer, cache, key);
+  else if (group.rank() == 0)
+    publishBrick(cache, key, slot);
 }
 
 // Algorithm 2 whole, by a group that keeps its samples in registers: member r evaluates the

@@ -5,7 +5,9 @@
 // Why not a 3D texture with hardware filtering (paper 3.2): under dp and pt, bricks are written
 // while other grids or blocks of the same frame read the pool, and the texture cache is coherent
 // only at grid boundaries; a plain array read through L2 (ld.global.cg) is coherent, and every
-// scheduler - and the CPU - then interpolates with the same arithmetic, bit for bit.
+// scheduler - and the CPU - then interpolates with the same arithmetic, bit for bit. Where the
+// pool cannot change while the reading kernel runs (sp, graph: PoolReads::ReadOnly), the same
+// array is read through L1 (ld.global.nc).
 #pragma once
 
 #include "gvdp/render/trilinear.h"
@@ -42,34 +44,42 @@ GVDP_HD GVDP_INLINE uint64_t occupancyCellsOf(Vec3i i) {
   return bits;
 }
 
+// How a kernel may read the pool (and the entries that lead to it, cache/cached_access.h).
+enum class PoolReads : uint8_t {
+  Coherent,  // bricks are published while the kernel runs (dp, pt): through L2
+  ReadOnly,  // every brick it can find was written before it began (sp, graph): through L1
+};
+
 struct BrickPool {
   Rgba8* texels;        // slot * BRICK_SAMPLE_COUNT + (z * 10 + y) * 10 + x
   uint64_t* occupancy;  // per slot (occupancyBit), written with the samples, before the entry
 
-  GVDP_HD static Rgba8 load(const Rgba8* p) {
+  template <PoolReads READS, class T>
+  GVDP_HD static T load(const T* p) {
 #if GVDP_IS_GPU_CODE
-    return __ldcg(p);
+    if constexpr (READS == PoolReads::ReadOnly)
+      return __ldg(p);
+    else
+      return __ldcg(p);
 #else
     return *p;
 #endif
   }
 
   // v: voxel coordinates of the brick's level (local); origin = 8 * local brick coordinates.
+  template <PoolReads READS = PoolReads::Coherent>
   GVDP_HD Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v) const {
     const Rgba8* brick = texels + static_cast<size_t>(slot) * BRICK_SAMPLE_COUNT;
     return trilinear(v, [&](int x, int y, int z) {
-      return load(brick +
-                  ((z - origin.z + 1) * BRICK_SAMPLES + (y - origin.y + 1)) * BRICK_SAMPLES +
-                  (x - origin.x + 1));
+      return load<READS>(brick +
+                         ((z - origin.z + 1) * BRICK_SAMPLES + (y - origin.y + 1)) * BRICK_SAMPLES +
+                         (x - origin.x + 1));
     });
   }
 
+  template <PoolReads READS = PoolReads::Coherent>
   GVDP_HD uint64_t loadOccupancy(uint32_t slot) const {
-#if GVDP_IS_GPU_CODE
-    return __ldcg(reinterpret_cast<const unsigned long long*>(occupancy + slot));
-#else
-    return occupancy[slot];
-#endif
+    return load<READS>(reinterpret_cast<const unsigned long long*>(occupancy + slot));
   }
 
   GVDP_HD void write(uint32_t slot, int sample, Rgba8 value) const {

@@ -42,9 +42,13 @@ struct Lod {
   GVDP_HD int firstStepAtOrAfter(int level, float t) const {
     return firstStepAtOrAfter(span(level), t);
   }
+  // No division: an estimate through the reciprocal (8 bricksPerUnit), then settled on the
+  // lattice itself (sampleT), so the answer is exact whatever the estimate's rounding.
   GVDP_HD static int firstStepAtOrAfter(const LevelSpan& span, float t) {
-    float k = ceilf((t - span.start) / span.voxelSize - 0.5f);
-    return k > 0.0f ? static_cast<int>(k) : 0;
+    float k = ceilf((t - span.start) * (span.bricksPerUnit * BRICK_WIDTH) - 0.5f);
+    int step = k > 0.0f ? static_cast<int>(k) : 0;
+    if (step > 0 && span.sampleT(step - 1) >= t) return step - 1;
+    return span.sampleT(step) < t ? step + 1 : step;
   }
   // The level whose distance range holds t (levels when beyond the last one).
   GVDP_HD int levelAt(float t) const {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "gvdp/base/ray.h"
+#include "gvdp/render/empty_box.h"
 #include "gvdp/render/lod.h"
 #include "gvdp/render/trilinear.h"
 
@@ -49,18 +50,24 @@ GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, const LevelSpan&
 enum class BrickState : uint8_t { Resident, Empty, Stop };
 
 // What to do with the brick under a sample: sample `slot` (Resident; its clear cells sample
-// zero, `occupancy`) or skip the cube of the
-// bricks within `radius` of `brick` (Empty), both at `level`, which is the sample's level or a
-// coarser one (an EMPTY ancestor, or a resident ancestor standing in for a missing brick in a
-// degraded frame).
+// zero, `occupancy`) or leave the empty box `emptyCodes` names (render/empty_box.h; Empty),
+// both at `level`, which is the sample's level or a coarser one (an EMPTY ancestor, or a
+// resident ancestor standing in for a missing brick in a degraded frame).
 struct BrickLookup {
   BrickState state;
   uint32_t slot;
   int level;
   Vec3i brick;                        // local brick coordinates at `level`
-  int radius = 0;                     // Empty: the cube's radius in bricks
   uint64_t occupancy = ~uint64_t{0};  // Resident: the brick's occupied cells (brick_pool.h)
+  uint32_t emptyCodes = 0;            // Empty: the box's reach codes
 };
+
+// The brick coordinate, along one axis, of the face through which a ray of direction component
+// d leaves the empty box around `brick` (the far face of the last brick of the box).
+GVDP_HD GVDP_INLINE int exitFaceAlong(int axis, int brick, float d, uint32_t emptyCodes) {
+  return d >= 0.0f ? brick + emptyReachThrough(emptyCodes, axis + FACE_ABOVE) + 1
+                   : brick - emptyReachThrough(emptyCodes, axis);
+}
 
 enum class MarchResult : uint8_t { Finished, Stopped };
 
@@ -95,18 +102,18 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
       b = access.lookup(s.level, brick);
       if (b.state == BrickState::Stop) return MarchResult::Stopped;
       if (b.state == BrickState::Empty) {
-        // Every sample of the cube at a level up to the cube's own is zero; coarser samples in
-        // it may not be: the skip ends at the cube or at the end of its level, whichever comes
+        // Every sample of the box at a level up to the box's own is zero; coarser samples in
+        // it may not be: the skip ends at the box or at the end of its level, whichever comes
         // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
         // its level or a coarser one, whichever boxes the lookups happened to return: the
         // image does not depend on how far each skip goes.
-        float side = lod.voxelSize(b.level) * BRICK_WIDTH;
-        Vec3i first = b.brick - Vec3i{b.radius, b.radius, b.radius};
-        Vec3f lo{first.x * side, first.y * side, first.z * side};
-        float extent = side * static_cast<float>(2 * b.radius + 1);
-        float levelEnd = b.level == s.level ? span.end : lod.levelEnd(b.level);
-        advanceTo(s, lod, span,
-                  fminf(boxExit(ray, invD, lo, lo + Vec3f{extent, extent, extent}), levelEnd));
+        bool own = b.level == s.level;
+        float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
+        Vec3f exit{static_cast<float>(exitFaceAlong(0, b.brick.x, ray.d.x, b.emptyCodes)) * side,
+                   static_cast<float>(exitFaceAlong(1, b.brick.y, ray.d.y, b.emptyCodes)) * side,
+                   static_cast<float>(exitFaceAlong(2, b.brick.z, ray.d.z, b.emptyCodes)) * side};
+        float levelEnd = own ? span.end : lod.levelEnd(b.level);
+        advanceTo(s, lod, span, fminf(planesExit(ray, invD, exit), levelEnd));
         continue;
       }
       resident = b;

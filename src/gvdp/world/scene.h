@@ -36,7 +36,7 @@ struct SeededWorld {
 using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox>;
 using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox>;
 using ForestWorld = SeededWorld<produceForest, forestEmptyBox>;
-using RandomSpheresWorld = SeededWorld<produceRandomSpheres>;
+using RandomSpheresWorld = SeededWorld<produceRandomSpheres, randomSpheresEmptyBox>;
 using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres>;
 
 enum class SceneKind : uint8_t { Perlin, Fbm, Forest, RandomSpheres, AlignedSpheres };
