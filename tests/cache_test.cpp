@@ -234,6 +234,7 @@ TEST(Cache, WindowEntryIsEntryIndexInsideTheWindow) {
               static_cast<int>(rng() % (m.width + 4u)) - 2};
       Vec3i g = m.windowOrigin[level] + d;
       uint32_t e = m.windowEntry(level, g);
+      ASSERT_EQ(e, m.windowEntryOfLocal(level, g - m.localOriginBrick[level]));
       if (m.inWindow(level, g)) {
         ++inside;
         ASSERT_EQ(e, m.entryIndex(level, g)) << "level " << level;

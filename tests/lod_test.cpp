@@ -36,6 +36,32 @@ TEST(Lod, LatticeIsOneVoxelPerStepRestartingAtEachLevel) {
   }
 }
 
+// firstStepAtOrAfter is exact: the first lattice sample at or after t (no sample before it is),
+// whatever the voxel size (powers of two and not) and t (on samples, between, before the level).
+// voxelSize is ldexpf's value.
+TEST(Lod, FirstStepIsTheFirstSampleAtOrAfterT) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float v0 : {0.0625f, 0.03125f, 0.1f, 0.0173f}) {
+    Lod lod{v0, 0.0007f, 8};
+    for (int level = 0; level < lod.levels; ++level) {
+      EXPECT_EQ(lod.voxelSize(level), std::ldexp(v0, level));
+      LevelSpan span = lod.span(level);
+      for (int i = 0; i < 3000; ++i) {
+        int k = static_cast<int>(u(rng) * 700.0f);
+        float t = i % 3 == 0   ? span.sampleT(k)
+                  : i % 3 == 1 ? std::nextafter(span.sampleT(k), 0.0f)
+                               : span.start + (u(rng) * 700.0f - 2.0f) * span.voxelSize;
+        int step = Lod::firstStepAtOrAfter(span, t);
+        ASSERT_GE(span.sampleT(step), t) << v0 << " level " << level << " t " << t;
+        if (step > 0) {
+          ASSERT_LT(span.sampleT(step - 1), t) << v0 << " level " << level;
+        }
+      }
+    }
+  }
+}
+
 TEST(Lod, AdvanceAlwaysProgressesAndLandsOnTheLattice) {
   Lod lod{0.0625f, 0.02f, 5};
   std::mt19937 rng(11);

@@ -17,6 +17,16 @@ TEST(Math, FloorDivAndModMatchMathematicalDefinitions) {
     }
 }
 
+TEST(Math, HalfFloorAndExp2iAreTheirDefinitions) {
+  for (int a = -40; a <= 40; ++a) {
+    Vec3i h = halfFloor({a, -a, a + 1});
+    EXPECT_EQ(h.x, floorDiv(a, 2));
+    EXPECT_EQ(h.y, floorDiv(-a, 2));
+    EXPECT_EQ(h.z, floorDiv(a + 1, 2));
+  }
+  for (int e = -126; e <= 127; ++e) EXPECT_EQ(exp2i(e), std::ldexp(1.0f, e)) << e;
+}
+
 // The planes are the faces of a box the ray leaves: the first it meets is the exit.
 TEST(Math, PlanesExitLeavesABox) {
   Ray r{{0.5f, 0.5f, 0.5f}, normalize(Vec3f{1.0f, 0.0f, 0.0f})};

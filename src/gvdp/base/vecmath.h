@@ -2,7 +2,9 @@
 // they can be copied to the GPU as kernel arguments and stored in device buffers.
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "gvdp/base/defs.h"
 
@@ -104,6 +106,18 @@ GVDP_HD GVDP_INLINE int floorDiv(int a, int b) {
 }
 GVDP_HD GVDP_INLINE int floorMod(int a, int b) {
   return a - floorDiv(a, b) * b;
+}
+// The parent of a brick one level coarser: floor(a / 2) per axis (an arithmetic shift).
+GVDP_HD GVDP_INLINE Vec3i halfFloor(Vec3i a) {
+  return {a.x >> 1, a.y >> 1, a.z >> 1};
+}
+// 2^e as a float for e in [-126, 127]: ldexpf(1, e) without its range handling.
+GVDP_HD GVDP_INLINE float exp2i(int e) {
+#if GVDP_IS_GPU_CODE
+  return __int_as_float((e + 127) << 23);
+#else
+  return std::bit_cast<float>(static_cast<uint32_t>(e + 127) << 23);
+#endif
 }
 
 // --- scalars ------------------------------------------------------------------------------

@@ -70,7 +70,7 @@ struct CachedAccess {
 
   // An ancestor's entry; MISSING outside its window (never read: it would alias another brick).
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
-    uint32_t i = cache.clipmap.windowEntry(level, cache.clipmap.globalBrick(level, localBrick));
+    uint32_t i = cache.clipmap.windowEntryOfLocal(level, localBrick);
     return i == Clipmap::NOT_IN_WINDOW ? ENTRY_MISSING : loadEntry(&cache.entries[i]);
   }
 
@@ -118,10 +118,9 @@ struct CachedAccess {
   }
 
   GVDP_HD BrickLookup find(int level, Vec3i brick) {
-    Vec3i g = cache.clipmap.globalBrick(level, brick);
     // The clipmap width covers every sample of a level (lod_test checks the formula); a brick
     // outside its window could only alias another one, so it is never read.
-    uint32_t index = cache.clipmap.windowEntry(level, g);
+    uint32_t index = cache.clipmap.windowEntryOfLocal(level, brick);
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
     uint32_t e = loadEntry(entry);
@@ -130,13 +129,13 @@ struct CachedAccess {
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
-      a = {floorDiv(a.x, 2), floorDiv(a.y, 2), floorDiv(a.z, 2)};
+      a = halfFloor(a);
       uint32_t ea = entryAt(up, a);
       if (isEmptyEntry(ea)) return empty(up, a, ea);
       if (isSlot(ea) && degraded()) return resident(ea, up, a);
     }
     if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
-    if (e == ENTRY_MISSING) onMiss(cache, level, g, entry);
+    if (e == ENTRY_MISSING) onMiss(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};
   }

@@ -15,6 +15,7 @@ struct Clipmap {
   Vec3i windowOrigin[MAX_LEVELS];      // global brick coordinates of each window's min corner
   Vec3i localOriginBrick[MAX_LEVELS];  // global brick coordinates of the local origin
   Vec3i windowPhase[MAX_LEVELS];       // windowOrigin mod W, per axis
+  Vec3i localToWindow[MAX_LEVELS];     // localOriginBrick - windowOrigin
 
   GVDP_HD Vec3i globalBrick(int level, Vec3i localBrick) const {
     return localOriginBrick[level] + localBrick;
@@ -35,7 +36,14 @@ struct Clipmap {
   // so g mod W is it plus the window's phase, less W once.
   static constexpr uint32_t NOT_IN_WINDOW = 0xffffffffu;
   GVDP_HD uint32_t windowEntry(int level, Vec3i g) const {
-    Vec3i d = g - windowOrigin[level];
+    return windowEntryAt(level, g - windowOrigin[level]);
+  }
+  // The same for local brick coordinates (the march's).
+  GVDP_HD uint32_t windowEntryOfLocal(int level, Vec3i localBrick) const {
+    return windowEntryAt(level, localBrick + localToWindow[level]);
+  }
+  // d: the brick's offset from the window's min corner.
+  GVDP_HD uint32_t windowEntryAt(int level, Vec3i d) const {
     if (static_cast<unsigned>(d.x) >= static_cast<unsigned>(width) ||
         static_cast<unsigned>(d.y) >= static_cast<unsigned>(width) ||
         static_cast<unsigned>(d.z) >= static_cast<unsigned>(width))
@@ -67,6 +75,7 @@ inline Clipmap clipmapOf(const FrameSetup& frame) {
     c.windowOrigin[level] = origin + eye - Vec3i{half, half, half};
     Vec3i o = c.windowOrigin[level];
     c.windowPhase[level] = {floorMod(o.x, c.width), floorMod(o.y, c.width), floorMod(o.z, c.width)};
+    c.localToWindow[level] = origin - o;
   }
   return c;
 }

@@ -126,8 +126,7 @@ GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, con
         marked = atomicCas32(&cache.entries[index], ENTRY_MISSING, entry) == ENTRY_MISSING;
     }
     if (group.broadcast(marked) == 0u || key.level + 1 >= cache.clipmap.levels) return;
-    key = {{floorDiv(key.brick.x, 2), floorDiv(key.brick.y, 2), floorDiv(key.brick.z, 2)},
-           key.level + 1};
+    key = {halfFloor(key.brick), key.level + 1};
     index = cache.clipmap.windowEntry(key.level, key.brick);
     if (index == Clipmap::NOT_IN_WINDOW || !brickBoundedEmpty(producer, key)) return;
   }

@@ -28,7 +28,8 @@ struct Lod {
   float pixelAngle;  // cone spread per unit distance (pixel footprint at t = 1)
   int levels;
 
-  GVDP_HD float voxelSize(int level) const { return ldexpf(voxelSize0, level); }
+  // v0 2^L, exact (a product by a power of two): ldexpf's value without its cost.
+  GVDP_HD float voxelSize(int level) const { return voxelSize0 * exp2i(level); }
   GVDP_HD float levelStart(int level) const {
     return level == 0 ? 0.0f : voxelSize(level - 1) / pixelAngle;
   }
