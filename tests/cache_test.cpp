@@ -248,6 +248,22 @@ TEST(Cache, WindowEntryIsEntryIndexInsideTheWindow) {
   EXPECT_GT(outside, 100);
 }
 
+// A sample's cells are those whose reads (sample indices 2c..2c+3 per axis) include it.
+TEST(Cache, OccupancyCellsOfASampleAreItsDefinition) {
+  for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
+    Vec3i i{s % BRICK_SAMPLES, (s / BRICK_SAMPLES) % BRICK_SAMPLES,
+            s / (BRICK_SAMPLES * BRICK_SAMPLES)};
+    uint64_t expected = 0;
+    for (int c = 0; c < 64; ++c) {
+      Vec3i cell{c % 4, (c / 4) % 4, c / 16};
+      auto reads = [](int index, int at) { return index >= 2 * at && index <= 2 * at + 3; };
+      if (reads(i.x, cell.x) && reads(i.y, cell.y) && reads(i.z, cell.z))
+        expected |= uint64_t{1} << c;
+    }
+    ASSERT_EQ(occupancyCellsOf(i), expected) << s;
+  }
+}
+
 // Production's occupancy is exact per cell: a clear cell has only zero samples in its reads, a
 // set one at least one nonzero; and a position in a clear cell samples zero.
 TEST(Cache, OccupancyCellsAreExact) {
