@@ -251,8 +251,7 @@ TEST(Cache, WindowEntryIsEntryIndexInsideTheWindow) {
 // A sample's cells are those whose reads (sample indices 2c..2c+3 per axis) include it.
 TEST(Cache, OccupancyCellsOfASampleAreItsDefinition) {
   for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
-    Vec3i i{s % BRICK_SAMPLES, (s / BRICK_SAMPLES) % BRICK_SAMPLES,
-            s / (BRICK_SAMPLES * BRICK_SAMPLES)};
+    Vec3i i = brickSampleIndex(s);
     uint64_t expected = 0;
     for (int c = 0; c < 64; ++c) {
       Vec3i cell{c % 4, (c / 4) % 4, c / 16};
