@@ -39,6 +39,8 @@ sanitize() {
   local scene=forest movement=walkthrough args=()
   [ "$pool" = tiny ] && scene=random-spheres movement=backward
   [ "$sched" != direct ] && args=(--pool-bricks "$([ "$pool" = tiny ] && echo 64 || echo 20000)")
+  # pt with its lookahead on (off by default): the protocol with every kind of claim in it.
+  [ "$sched" = pt ] && args+=(--lookahead 4)
   local log=/tmp/sanitize.log
   GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
     --backend cuda --scheduler "$sched" --scene "$scene" --movement "$movement" --width 160 \

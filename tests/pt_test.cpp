@@ -32,6 +32,50 @@ TEST_P(PtCpuTest, MatchesSpBitForBitOnA20FrameWalkthrough) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, PtCpuTest, ::testing::Range(0, SCENE_COUNT));
 
+SchedulerOptions ptWithLookahead(Backend backend, uint32_t lookahead) {
+  SchedulerOptions o{backend, SchedulerKind::Pt};
+  o.lookahead = lookahead;
+  return o;
+}
+
+// The lookahead changes what is produced and when, never the image: pt without it, with the
+// default and with a long one render sp's frames; with it, bricks are claimed ahead of stopped
+// rays, and some of them are produced and never sampled (over-production, counted exactly: sp
+// and pt without lookahead sample every brick they produce).
+void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, int w, int h) {
+  constexpr int FRAMES = 12;
+  Renders sp = renderRun(scene, {backend, SchedulerKind::Sp}, FRAMES, w, h);
+  uint64_t claims[3] = {0, 0, 0}, unsampled[3] = {0, 0, 0}, produced[3] = {0, 0, 0};
+  const uint32_t lookaheads[3] = {0, 4, 16};
+  for (int k = 0; k < 3; ++k) {
+    Renders pt = renderRun(scene, ptWithLookahead(backend, lookaheads[k]), FRAMES, w, h);
+    for (int f = 0; f < FRAMES; ++f) {
+      EXPECT_EQ(sp.images[f].pixels, pt.images[f].pixels)
+          << scene << " lookahead " << lookaheads[k] << " frame " << f;
+      EXPECT_EQ(pt.stats[f].unfinishedPixels, 0);
+      EXPECT_EQ(sp.stats[f].cache.unsampled, 0u) << "sp samples every brick it produces";
+      EXPECT_LE(pt.stats[f].cache.unsampled, pt.stats[f].cache.produced);
+      claims[k] += pt.stats[f].lookaheadClaims;
+      unsampled[k] += pt.stats[f].cache.unsampled;
+      produced[k] += pt.stats[f].cache.produced;
+    }
+    std::printf("[ measure ] %s pt lookahead %u, %dx%d x%d: %llu claimed ahead, %llu of %llu "
+                "produced bricks unsampled\n",
+                scene.c_str(), lookaheads[k], w, h, FRAMES, static_cast<unsigned long long>(claims[k]),
+                static_cast<unsigned long long>(unsampled[k]),
+                static_cast<unsigned long long>(produced[k]));
+  }
+  EXPECT_EQ(claims[0], 0u);
+  EXPECT_EQ(unsampled[0], 0u) << "without lookahead every produced brick is sampled";
+  EXPECT_GT(claims[1], 0u);
+  EXPECT_GT(claims[2], claims[1]);
+}
+
+TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {
+  for (const char* scene : {"perlin", "forest", "random-spheres"})
+    expectLookaheadChangesNoImage(Backend::Cpu, scene, 96, 64);
+}
+
 TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
   Renders pt = renderRun("forest", {Backend::Cpu, SchedulerKind::Pt, 64}, 3, 96, 60);
   for (const FrameStats& s : pt.stats) {
@@ -85,6 +129,7 @@ TEST(PtWaitList, ParkedRaysComeBackAndLateRaysMarchOn) {
               ctx.counter(PT_RAY_READY)};
   ctx.freeIds = {freeSlots.data(), 3u, ctx.counter(PT_FREE_HEAD), ctx.counter(PT_FREE_TAIL),
                  ctx.counter(PT_FREE_READY)};
+  ctx.firstLookaheadId = 4;  // ids 0..3 come from freeIds, none from the lookahead
   ctx.waitHead = waitHead.data();
   ctx.waitNext = waitNext.data();
   uint32_t entry = ENTRY_PRODUCTION_TASK + 2;
@@ -150,5 +195,11 @@ TEST(GpuGraphTest, HostDrivenLoopMatchesSpBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuPtTest, ::testing::Range(0, SCENE_COUNT));
+
+TEST(GpuPt, LookaheadChangesWhatIsProducedNeverTheImage) {
+  GVDP_REQUIRE_GPU();
+  for (const char* scene : {"perlin", "forest", "random-spheres"})
+    expectLookaheadChangesNoImage(Backend::Cuda, scene, 320, 200);
+}
 
 }  // namespace gvdp::detail

@@ -42,7 +42,7 @@ struct RenderFlags {
   std::string origin = "0,0,0", out = "out", timeline;
   std::optional<int> frames, width, height;
   int levels = DEFAULT_LEVELS;
-  std::optional<int64_t> poolBricks, poolMb, pendingLaunches;
+  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead;
   float fov = DEFAULT_FOV_DEGREES;
 };
 
@@ -63,6 +63,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "cache, the reference)");
   cmd->add_option("--pending-launches", f.pendingLaunches,
                   "dp: CDP pending-launch buffer (task-queue capacity on the CPU), default 65536");
+  cmd->add_option("--lookahead", f.lookahead,
+                  "pt: missing bricks a stopped ray claims ahead of it, 0.." +
+                      std::to_string(MAX_LOOKAHEAD) + " (default " +
+                      std::to_string(DEFAULT_LOOKAHEAD) + "; 0: off)");
   cmd->add_option("--pool-bricks", f.poolBricks,
                   "brick pool slots (default: 500000 = 2 GB on the GPU, 32768 on the CPU; not "
                   "with direct)");
@@ -116,6 +120,16 @@ void refuseUnusedFlags(const RenderFlags& f, SchedulerKind kind) {
   GVDP_INPUT_CHECK(kind == SchedulerKind::Dp || !f.pendingLaunches, "--pending-launches ",
                    f.pendingLaunches.value_or(0), " is used by scheduler dp only, not by ",
                    schedulerName(kind));
+  GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.lookahead, "--lookahead ",
+                   f.lookahead.value_or(0), " is used by scheduler pt only, not by ",
+                   schedulerName(kind));
+}
+
+uint32_t lookaheadFrom(const std::optional<int64_t>& n) {
+  if (!n) return DEFAULT_LOOKAHEAD;
+  GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_LOOKAHEAD, "bad --lookahead ", *n, " (expected 0..",
+                   MAX_LOOKAHEAD, ")");
+  return static_cast<uint32_t>(*n);
 }
 
 uint32_t pendingLaunchesFrom(const std::optional<int64_t>& n) {
@@ -142,6 +156,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.levels = f.levels;
   o.scheduler.poolBricks = poolBricksFrom(f.poolBricks, f.poolMb);
   o.scheduler.pendingLaunches = pendingLaunchesFrom(f.pendingLaunches);
+  o.scheduler.lookahead = lookaheadFrom(f.lookahead);
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
   o.scheduler.timeline = !f.timeline.empty();
@@ -272,7 +287,7 @@ struct BenchFlags {
   std::string movements = "walkthrough,forward,backward,sideways,spinning";
   std::string schedulers = "sp,dp,pt", backend = "auto", out = "results.json", csv, markdown;
   std::optional<int> frames, warmup, width, height;
-  std::optional<int64_t> poolBricks;
+  std::optional<int64_t> poolBricks, lookahead;
   bool scale = false;
 };
 
@@ -344,6 +359,7 @@ BenchOptions benchOptions(const BenchFlags& f) {
   GVDP_INPUT_CHECK(o.warmup >= 0 && o.warmup <= 100000, "bad --warmup ", o.warmup,
                    " (expected 0..100000)");
   o.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
+  o.lookahead = lookaheadFrom(f.lookahead);
   o.scale = f.scale;
   validate(o);
   return o;
@@ -451,6 +467,8 @@ int run(int argc, char** argv) {
   benchCmd->add_option("--width", bench.width, "image width (GPU 1500, CPU 160)");
   benchCmd->add_option("--height", bench.height, "image height (GPU 1000, CPU 100)");
   benchCmd->add_option("--pool-bricks", bench.poolBricks, "brick pool slots");
+  benchCmd->add_option("--lookahead", bench.lookahead, "pt's lookahead in bricks (default " +
+                                                           std::to_string(DEFAULT_LOOKAHEAD) + ")");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");
   benchCmd->add_option("--out", bench.out, "results JSON (default results.json)");
   benchCmd->add_option("--csv", bench.csv, "also a CSV file");

@@ -24,7 +24,9 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   s.width = o.width;
   s.height = o.height;
   s.frames = o.warmup + o.frames;
-  s.scheduler = resolvedOptions({o.backend, k, o.poolBricks});
+  SchedulerOptions so{o.backend, k, o.poolBricks};
+  so.lookahead = o.lookahead;
+  s.scheduler = resolvedOptions(so);
   return s;
 }
 
@@ -43,7 +45,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.scene = scene;
   c.movement = std::string(movementName(m));
   c.scheduler = std::string(schedulerName(k));
-  uint64_t bricks = 0, samples = 0, lookups = 0, skips = 0;
+  uint64_t bricks = 0, unsampled = 0, samples = 0, lookups = 0, skips = 0;
   for (int f = 0; f < s.frames; ++f) {
     auto t0 = std::chrono::steady_clock::now();
     FrameStats st = renderer->render(poseOf(s, f), image);
@@ -53,6 +55,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     c.frameMs.push_back(st.ms);
     c.frameWallMs.push_back(wall);
     bricks += st.cache.produced;
+    unsampled += st.cache.unsampled;
     samples += st.cache.samples;
     lookups += st.cache.lookups;
     skips += st.cache.skips;
@@ -70,6 +73,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.medianWallMs = frameTimeStats(c.frameWallMs).medianMs;
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
+  c.overproduction = bricks ? static_cast<double>(unsampled) / static_cast<double>(bricks) : 0.0;
   double rays = static_cast<double>(c.frameMs.size()) * s.width * s.height;
   c.samplesPerRay = static_cast<double>(samples) / rays;
   c.lookupsPerRay = static_cast<double>(lookups) / rays;
@@ -117,9 +121,10 @@ BenchResults runBench(const BenchOptions& o,
         char line[256];
         std::snprintf(line, sizeof line,
                       "%s %s %s: %.1f FPS (1%% low %.1f), %.0f bricks/frame, per ray %.1f samples "
-                      "%.1f lookups %.1f skips",
+                      "%.1f lookups %.1f skips, %.1f%% of bricks unsampled",
                       c.scene.c_str(), c.movement.c_str(), c.scheduler.c_str(), c.avgFps, c.low1Fps,
-                      c.bricksPerFrame, c.samplesPerRay, c.lookupsPerRay, c.skipsPerRay);
+                      c.bricksPerFrame, c.samplesPerRay, c.lookupsPerRay, c.skipsPerRay,
+                      100.0 * c.overproduction);
         progress(++done, total, line);
       }
   // Speed-up against sp in the same (scene, movement).
@@ -157,6 +162,7 @@ std::string benchJson(const BenchResults& r) {
                      {"samples_per_ray", c.samplesPerRay},
                      {"lookups_per_ray", c.lookupsPerRay},
                      {"skips_per_ray", c.skipsPerRay},
+                     {"overproduction", c.overproduction},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
@@ -179,12 +185,12 @@ std::string benchCsv(const BenchResults& r) {
   std::ostringstream s;
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
        "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
-       "skips_per_ray\n";
+       "skips_per_ray,overproduction\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
       << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << ',' << c.samplesPerRay
-      << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << '\n';
+      << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << '\n';
   return s.str();
 }
 

@@ -19,6 +19,7 @@ struct BenchOptions {
   int width = 1500, height = 1000;
   int frames = 32, warmup = 6, floorFrames = 8;
   uint32_t poolBricks = 0;
+  uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt's
   bool scale = false;  // frame time against resolution for dp on the first scene
 };
 
@@ -27,6 +28,8 @@ struct BenchCell {
   double avgFps, low1Fps, medianMs, p99Ms, medianWallMs, bricksPerFrame, floorMs, speedupVsSp = 0;
   // Per ray and frame, over the measured frames: samples, brick lookups, empty-space skips.
   double samplesPerRay, lookupsPerRay, skipsPerRay;
+  // Bricks produced in a measured frame that no ray of it sampled, over the bricks produced.
+  double overproduction;
   int64_t unfinishedPixels;
   uint64_t memoryBytes;
   std::vector<double> frameMs;      // CUDA events (GPU) or wall clock (CPU), per measured frame

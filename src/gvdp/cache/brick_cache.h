@@ -9,6 +9,9 @@
 //   sortLru(timestamps, n, frame, counts, timeline) -> const uint32_t*   the slots by timestamp,
 //                                               oldest first; counts[0] = slots stamped 0,
 //                                               counts[1] = slots stamped before `frame`
+//                                               (lastUsedFrame of the timestamps)
+//   countUnsampled(timestamps, n, frame, count) *count += slots produced in `frame` and never
+//                                               sampled, their marks cleared (takeUnsampled)
 //   unmapSlots(view, slots, n, timeline)        the head of that list, unmapped (cache_ops.h)
 //   lruBytes(), LRU_NAME                        what the sort holds, for the memory report
 #pragma once
@@ -105,8 +108,10 @@ class BrickCache {
   void setDegraded(bool d) { degraded_ = d; }
   bool degraded() const { return degraded_; }
 
-  // The frame's statistics; the resident count follows from the counters.
+  // The frame's statistics (once, at its end); the resident count follows from the counters.
   CacheStats frameStats() {
+    ops_.countUnsampled(timestamps_.data(), poolBricks_, frame_,
+                        counters_.data() + COUNTER_UNSAMPLED);
     uint32_t c[COUNTER_COUNT];
     readCounters(c);
     resident_ = resident_ + c[COUNTER_PRODUCED] - c[COUNTER_EVICTED];

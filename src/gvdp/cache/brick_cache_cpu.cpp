@@ -29,7 +29,8 @@ void HostCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs, const T
 
 const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
                                       uint32_t counts[2], const TimelineView&) {
-  for (uint32_t s = 0; s < n; ++s) order_[s] = (static_cast<uint64_t>(timestamps[s]) << 32) | s;
+  for (uint32_t s = 0; s < n; ++s)
+    order_[s] = (static_cast<uint64_t>(lastUsedFrame(timestamps[s])) << 32) | s;
   std::sort(order_.begin(), order_.begin() + n);
   auto below = [&](uint64_t stamp) {
     return static_cast<uint32_t>(std::lower_bound(order_.begin(), order_.begin() + n, stamp << 32) -
@@ -39,6 +40,11 @@ const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, ui
   counts[1] = below(frame);
   for (uint32_t i = 0; i < n; ++i) slots_[i] = static_cast<uint32_t>(order_[i]);
   return slots_.data();
+}
+
+void HostCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,
+                                  uint32_t* count) {
+  for (uint32_t s = 0; s < n; ++s) *count += takeUnsampled(&timestamps[s], frame) ? 1u : 0u;
 }
 
 void HostCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,

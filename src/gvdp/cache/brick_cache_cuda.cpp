@@ -50,6 +50,12 @@ void CudaCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_
   GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
+void CudaCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,
+                                  uint32_t* count) const {
+  launchCountUnsampled(timestamps, n, frame, count, TimelineView{}, stream_);
+  GVDP_CUDA_CHECK(cudaGetLastError());
+}
+
 size_t CudaCacheOps::lruBytes() const {
   return keysIn_.bytes() + keysOut_.bytes() + valuesIn_.bytes() + valuesOut_.bytes() +
          temp_.bytes();

@@ -16,6 +16,7 @@ namespace gvdp::detail {
 struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
   uint64_t resident = 0;  // slots holding a brick at the end of the frame
+  uint64_t unsampled = 0;  // bricks produced in the frame that no ray sampled (over-production)
   uint32_t refills = 0;   // free-list refills after the frame-start one
   // What the rays did (MarchCounter): samples, brick lookups, lookups that skipped empty space.
   uint64_t samples = 0, lookups = 0, skips = 0;
@@ -34,6 +35,7 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.empty = counters[COUNTER_EMPTY];
   s.failed = counters[COUNTER_FAILED];
   s.evicted = counters[COUNTER_EVICTED];
+  s.unsampled = counters[COUNTER_UNSAMPLED];
   s.requested = s.produced + s.empty + s.failed;  // every request ends in one of the three
   s.resident = resident;
   s.refills = refills;

@@ -16,7 +16,7 @@ void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* 
                           const TimelineView& timeline, cudaStream_t stream) {
   parallelForCuda("cache: LRU sort keys", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
-                    keys[i] = timestamps[i];
+                    keys[i] = lastUsedFrame(timestamps[i]);
                     values[i] = i;
                   });
 }
@@ -43,6 +43,14 @@ void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, ui
                   [=] __device__(uint32_t i) {
                     if (sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame))
                       *count = i + 1;
+                  });
+}
+
+void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* count,
+                          const TimelineView& timeline, cudaStream_t stream) {
+  parallelForCuda("cache: count unsampled", stream, n, timeline, TaskKind::Cache,
+                  [=] __device__(uint32_t i) {
+                    if (takeUnsampled(&timestamps[i], frame)) atomicAdd(count, 1u);
                   });
 }
 

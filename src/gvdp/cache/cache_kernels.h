@@ -13,13 +13,16 @@ namespace gvdp::detail {
 
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline,
                       cudaStream_t stream);
-// keys[i] = timestamps[i], values[i] = i.
+// keys[i] = lastUsedFrame(timestamps[i]), values[i] = i.
 void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n,
                           const TimelineView& timeline, cudaStream_t stream);
 size_t lruSortTempBytes(uint32_t n);
 void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* keysOut,
              const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit,
              cudaStream_t stream);
+// *count += the slots whose brick was produced in `frame` and never sampled (takeUnsampled).
+void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* count,
+                          const TimelineView& timeline, cudaStream_t stream);
 // *count = how many of the first n sorted keys are below frame.
 void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
                       const TimelineView& timeline, cudaStream_t stream);

@@ -84,7 +84,7 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, u
     atomicAdd32(&c.counters[COUNTER_FAILED], 1u);
   } else {
     c.inverse[found] = key;
-    storeRelaxed32(&c.timestamps[found], c.frame);
+    storeRelaxed32(&c.timestamps[found], c.frame | TIMESTAMP_UNSAMPLED);  // until a ray samples it
     storeRelease32(&c.entries[index], found);
     atomicAdd32(&c.counters[COUNTER_PRODUCED], 1u);
   }

@@ -21,15 +21,32 @@ enum CacheCounter : int {
   COUNTER_EMPTY,      // bricks found empty
   COUNTER_FAILED,     // productions without a free slot (entry back to MISSING)
   COUNTER_EVICTED,    // resident bricks unmapped (LRU or leaving the clipmap)
-  COUNTER_MARCH,      // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
+  COUNTER_UNSAMPLED,  // at the frame's end: bricks produced in it that no ray sampled
+  COUNTER_MARCH = 8,  // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
   COUNTER_COUNT = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT
 };
 static_assert(COUNTER_MARCH % 2 == 0, "the march's 64-bit counters must be 8-byte aligned");
 
+// A slot's timestamp from its production until a ray samples it is the frame with this bit set;
+// the LRU order ignores the bit, and the frame's end counts and clears it (over-production).
+constexpr uint32_t TIMESTAMP_UNSAMPLED = 0x80000000u;
+
+GVDP_HD GVDP_INLINE uint32_t lastUsedFrame(uint32_t timestamp) {
+  return timestamp & ~TIMESTAMP_UNSAMPLED;
+}
+
+// Frame end, per slot: true when the slot's brick was produced in `frame` and never sampled; its
+// timestamp becomes the frame.
+GVDP_HD GVDP_INLINE bool takeUnsampled(uint32_t* timestamp, uint32_t frame) {
+  if (*timestamp != (frame | TIMESTAMP_UNSAMPLED)) return false;
+  *timestamp = frame;
+  return true;
+}
+
 struct CacheView {
   Clipmap clipmap;
   uint32_t* entries;     // clipmap.entryCount()
-  uint32_t* timestamps;  // per slot: last frame it was sampled (0: never)
+  uint32_t* timestamps;  // per slot: last frame it was sampled (0: never; TIMESTAMP_UNSAMPLED)
   BrickKey* inverse;     // per slot: the brick it holds, level NO_LEVEL if none
   const uint32_t* freeSlots;
   uint32_t freeCount;  // valid entries of freeSlots

@@ -59,7 +59,11 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
 // during the kernel are claims (MISSING to IN_PRODUCTION), which publish nothing. A relaxed load
 // then suffices (an acquire at device scope also invalidates the SM's L1), and the pool, read-only
 // for the kernel's life, is read through L1.
-template <class Pool, class OnMiss = QueueRequest, PoolReads READS = PoolReads::Coherent>
+//
+// TOUCH: a resident brick found is stamped with the frame (it is sampled: the LRU keeps it, and
+// it is not over-production). The lookahead (cache/lookahead.h) reads without stamping.
+template <class Pool, class OnMiss = QueueRequest, PoolReads READS = PoolReads::Coherent,
+          bool TOUCH = true>
 struct CachedAccess {
   const CacheView& cache;
   const Pool& pool;
@@ -85,12 +89,14 @@ struct CachedAccess {
   // warp's stores to one slot coalesce, and nothing waits on them), on the CPU only when it
   // changes (a store per lookup would bounce the cache line between threads).
   GVDP_HD BrickLookup resident(uint32_t slot, int level, Vec3i brick) const {
+    if constexpr (TOUCH) {
 #if GVDP_IS_GPU_CODE
-    storeRelaxed32(&cache.timestamps[slot], cache.frame);
-#else
-    if (loadRelaxed32(&cache.timestamps[slot]) != cache.frame)
       storeRelaxed32(&cache.timestamps[slot], cache.frame);
+#else
+      if (loadRelaxed32(&cache.timestamps[slot]) != cache.frame)
+        storeRelaxed32(&cache.timestamps[slot], cache.frame);
 #endif
+    }
     // Written before the entry was published, read after its acquire load.
     return {BrickState::Resident, slot, level, brick, pool.template loadOccupancy<READS>(slot)};
   }
@@ -138,6 +144,18 @@ struct CachedAccess {
     if (e == ENTRY_MISSING) onMiss(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};
+  }
+
+  // The nearest resident coarser ancestor of a brick, or the brick itself as an empty one when
+  // none is: what stands in for a brick that is not resident.
+  GVDP_HD BrickLookup standIn(int level, Vec3i brick) const {
+    Vec3i a = brick;
+    for (int up = level + 1; up < lod.levels; ++up) {
+      a = halfFloor(a);
+      uint32_t ea = entryAt(up, a);
+      if (isSlot(ea)) return resident(ea, up, a);
+    }
+    return {BrickState::Empty, 0u, level, brick};
   }
 
   // A sample in a clear cell is zero without a read: trilinear() of its eight zero samples.

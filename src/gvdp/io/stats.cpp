@@ -21,6 +21,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   SchedulerOptions used = resolvedOptions(o.scheduler);  // 0: the scheduler has none
   if (used.poolBricks) j["pool_bricks"] = used.poolBricks;
   if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;
+  if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
   nlohmann::json mem = nlohmann::json::object();
   for (const MemoryItem& m : memory) mem[m.name] = m.bytes;
@@ -34,6 +35,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"bricks_produced", f.cache.produced},
                     {"bricks_empty", f.cache.empty},
                     {"bricks_failed", f.cache.failed},
+                    {"bricks_unsampled", f.cache.unsampled},
                     {"evictions", f.cache.evicted},
                     {"pool_occupancy", f.cache.resident},
                     {"samples", f.cache.samples},
@@ -45,6 +47,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"deferred_productions", f.deferred},
                     {"swept_pixels", f.sweptPixels},
                     {"relaunched_rays", f.relaunchedRays},
+                    {"lookahead_claims", f.lookaheadClaims},
                     {"degraded", f.degraded}});
   j["frames"] = list;
   return j.dump(1);

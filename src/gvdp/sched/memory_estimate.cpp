@@ -33,13 +33,6 @@ MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
   return m;
 }
 
-// pt's rings, task keys, wait lists and counters (pt_cpu.cpp, pt_cuda.cpp).
-size_t ptQueueBytes(uint32_t pixels, uint32_t ids) {
-  return (ringCapacity(pixels) + 2 * size_t{ringCapacity(ids)}) * sizeof(uint64_t) +
-         ids * (sizeof(BrickKey) + sizeof(uint32_t)) + size_t{pixels} * sizeof(uint32_t) +
-         PT_COUNTER_COUNT * PT_COUNTER_STRIDE * sizeof(uint32_t);
-}
-
 // The per-pixel structures of each scheduler on the CPU (*_cpu.cpp).
 void addCpuRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
   size_t payload = pixels * sizeof(RayState), list = pixels * sizeof(uint32_t);
@@ -59,7 +52,7 @@ void addCpuRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
     case SchedulerKind::Pt:
       m.push_back({"ray_payload", payload});
       m.push_back({"pt_queues_and_wait_lists",
-                   ptQueueBytes(n, n + static_cast<uint32_t>(ThreadPool::global().size()))});
+                   PtLayout{n, static_cast<uint32_t>(ThreadPool::global().size())}.bytes()});
       break;
     case SchedulerKind::Direct:
       break;
@@ -76,7 +69,7 @@ void addCudaRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) 
   uint32_t n = static_cast<uint32_t>(pixels);
   if (o.kind == SchedulerKind::Dp) m.push_back({"ray_locks", pixels * sizeof(uint32_t)});
   if (o.kind == SchedulerKind::Pt)
-    m.push_back({"pt_queues_and_wait_lists", ptQueueBytes(n, n + PT_CUDA_WORKER_WARPS)});
+    m.push_back({"pt_queues_and_wait_lists", PtLayout{n, PT_CUDA_WORKER_WARPS}.bytes()});
 }
 
 }  // namespace

@@ -37,9 +37,16 @@ struct FrameStats {
   uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)
   int64_t sweptPixels = 0;      // dp: rays the device-side schedule left to the sp sweep
   uint64_t relaunchedRays = 0;  // pt: parked rays a production queued again
+  uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline
 };
+
+// pt's lookahead (cache/lookahead.h): bricks a stopped ray claims beyond the one it waits for.
+// Off by default: on an H100 (BENCHMARKS.md, "Lookahead") 4 bricks made forest, random-spheres
+// and aligned-spheres walkthroughs 3-17% faster but perlin's 14% slower.
+constexpr uint32_t DEFAULT_LOOKAHEAD = 0;
+constexpr uint32_t MAX_LOOKAHEAD = 64;
 
 struct SchedulerOptions {
   Backend backend = Backend::Cpu;
@@ -47,6 +54,7 @@ struct SchedulerOptions {
   uint32_t poolBricks = 0;       // 0: the backend's default
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
+  uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt: missing bricks a stopped ray claims ahead
 };
 
 // Default pool sizes: about 2 GB on the GPU (the paper), 128 MB on the CPU.
@@ -75,6 +83,7 @@ inline uint32_t pendingLaunchesOf(const SchedulerOptions& o) {
 inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.poolBricks = o.kind == SchedulerKind::Direct ? 0 : poolBricksOf(o);
   o.pendingLaunches = o.kind == SchedulerKind::Dp ? pendingLaunchesOf(o) : 0;
+  o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
   return o;
 }
 

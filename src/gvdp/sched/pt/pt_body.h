@@ -12,12 +12,18 @@
 // the production closes the list after publishing the brick and queues its rays as full warps.
 // A push onto a closed list fails and the ray marches on: no ray is ever lost or held twice.
 //
+// A stopped ray then looks ahead (cache/lookahead.h): it claims up to `lookahead` more missing
+// bricks on its path, each with an id from a ring of its own (`lookaheadIds`), taken only when
+// one is ready (never waited for): without an id the brick stays MISSING for a ray to claim.
+//
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
-// so `rays` holds at most `pixels` items; every unfinished task has its winning ray parked on
-// it or about to be, so at most pixels + workers ids are out of `freeIds` at once.
+// so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
+// ray parked on it or about to be, so at most pixels + workers of those ids are out at once, and
+// a ray that needs one always gets one (it waits only for a task in flight to finish); the
+// lookahead's ids are a separate PT_LOOKAHEAD_IDS. `tasks` holds at most all ids.
 #pragma once
 
-#include "gvdp/cache/cached_access.h"
+#include "gvdp/cache/lookahead.h"
 #include "gvdp/sched/ray_tasks.h"
 
 namespace gvdp::detail {
@@ -25,6 +31,7 @@ namespace gvdp::detail {
 constexpr uint32_t LIST_END = 0xffffffffu, LIST_CLOSED = 0xfffffffeu;
 constexpr int PT_BATCH = 32;           // rays per render task (a warp)
 constexpr int PT_COUNTER_STRIDE = 32;  // counters sit 128 bytes apart (no false sharing)
+constexpr uint32_t PT_LOOKAHEAD_IDS = 1u << 15;  // task ids for the lookahead's claims
 
 enum PtCounter : int {
   PT_RAY_HEAD,
@@ -36,11 +43,15 @@ enum PtCounter : int {
   PT_FREE_HEAD,
   PT_FREE_TAIL,
   PT_FREE_READY,
+  PT_LOOK_HEAD,  // the lookahead's free ids
+  PT_LOOK_TAIL,
+  PT_LOOK_READY,
   PT_NEXT_ITEM,     // next item of the tiled screen (fresh rays)
   PT_LIVE_RAYS,     // rays not finished; the frame is over at 0
   PT_PRODUCTIONS,   // production tasks run
   PT_RELAUNCHED,    // rays queued again by a production
   PT_RENDER_TASKS,  // render tasks run (fresh and relaunched)
+  PT_LOOKAHEAD,     // bricks claimed by lookaheads
   PT_COUNTER_COUNT
 };
 
@@ -113,6 +124,9 @@ struct PtContext {
   CacheView cache;
   RayState* payload;
   Ring rays, tasks, freeIds;
+  Ring lookaheadIds;           // values v: task id firstLookaheadId + v
+  uint32_t firstLookaheadId;   // ids below come from freeIds
+  uint32_t lookahead;          // bricks a stopped ray claims ahead of it (0: none)
   BrickKey* taskKey;   // per task id
   uint32_t* waitHead;  // per task id: LIST_END, a pixel, or LIST_CLOSED
   uint32_t* waitNext;  // per pixel
@@ -153,27 +167,54 @@ GVDP_HD GVDP_INLINE uint32_t requeueRays(const PtContext& ctx, uint32_t first) {
   return n;
 }
 
-// pt's answer to a MISSING brick: take a task id, then claim the brick with a CAS straight from
-// MISSING to the task's name, so that a ray stopping on it never waits for the winner (a spin
-// on a lane of its own warp); the losers give their id back. A free id always comes (the
-// capacity argument above): the claim does not check, it waits for its id.
+// A task id back to the ring it came from.
+GVDP_HD GVDP_INLINE void releaseTaskId(const PtContext& ctx, uint32_t id) {
+  if (id < ctx.firstLookaheadId)
+    ringPush(ctx.freeIds, id);
+  else
+    ringPush(ctx.lookaheadIds, id - ctx.firstLookaheadId);
+}
+
+// Claims a MISSING brick for task `id`: a CAS straight from MISSING to the task's name, so that a
+// ray stopping on it never waits for the winner (a spin on a lane of its own warp); the winner
+// queues the task, a loser gives its id back. True for the winner.
+GVDP_HD GVDP_INLINE bool startTask(const PtContext& ctx, uint32_t id, int level, Vec3i g,
+                                   uint32_t* entry) {
+  uint32_t* k = reinterpret_cast<uint32_t*>(&ctx.taskKey[id]);
+  storeRelaxed32(k, static_cast<uint32_t>(g.x));
+  storeRelaxed32(k + 1, static_cast<uint32_t>(g.y));
+  storeRelaxed32(k + 2, static_cast<uint32_t>(g.z));
+  storeRelaxed32(k + 3, static_cast<uint32_t>(level));
+  storeRelaxed32(&ctx.waitHead[id], LIST_END);
+  fenceSeqCst();  // the key and the list before the name
+  if (atomicCas32(entry, ENTRY_MISSING, ENTRY_PRODUCTION_TASK + id) == ENTRY_MISSING) {
+    ringPush(ctx.tasks, id);
+    return true;
+  }
+  // Lost: close the list again (a ray with a stale name of this id may be on it).
+  requeueRays(ctx, closeWaitList(ctx, id));
+  releaseTaskId(ctx, id);
+  return false;
+}
+
+// pt's answer to a MISSING brick a ray stops on: a task id from `freeIds`, waited for (one always
+// comes: the capacity argument above), then startTask.
 struct StartProduction {
   const PtContext* ctx;
   GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
-    uint32_t id = ringTake(ctx->freeIds, atomicAdd32(ctx->freeIds.head, 1u));
-    uint32_t* k = reinterpret_cast<uint32_t*>(&ctx->taskKey[id]);
-    storeRelaxed32(k, static_cast<uint32_t>(g.x));
-    storeRelaxed32(k + 1, static_cast<uint32_t>(g.y));
-    storeRelaxed32(k + 2, static_cast<uint32_t>(g.z));
-    storeRelaxed32(k + 3, static_cast<uint32_t>(level));
-    storeRelaxed32(&ctx->waitHead[id], LIST_END);
-    fenceSeqCst();  // the key and the list before the name
-    if (atomicCas32(entry, ENTRY_MISSING, ENTRY_PRODUCTION_TASK + id) == ENTRY_MISSING) {
-      ringPush(ctx->tasks, id);
-    } else {  // lost: close the list again (a ray with a stale name of this id may be on it)
-      requeueRays(*ctx, closeWaitList(*ctx, id));
-      ringPush(ctx->freeIds, id);
-    }
+    startTask(*ctx, ringTake(ctx->freeIds, atomicAdd32(ctx->freeIds.head, 1u)), level, g, entry);
+  }
+};
+
+// The lookahead's answer to a MISSING brick: an id from `lookaheadIds` if one is ready (one
+// attempt), then startTask; without one the brick stays MISSING.
+struct StartLookahead {
+  const PtContext* ctx;
+  GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
+    uint32_t position = 0;
+    if (ringClaim(ctx->lookaheadIds, 1, &position) == 0) return;
+    uint32_t id = ctx->firstLookaheadId + ringTake(ctx->lookaheadIds, position);
+    if (startTask(*ctx, id, level, g, entry)) atomicAdd32(ctx->counter(PT_LOOKAHEAD), 1u);
   }
 };
 
@@ -201,21 +242,31 @@ struct ParkOne {
   GVDP_HD bool operator()(const PtContext& ctx, uint32_t pixel, const uint32_t* stopEntry) const {
     return parkRay(ctx, pixel, stopEntry);
   }
+  // Whether this ray looks ahead for the rays stopping on the same brick with it: alone, yes.
+  GVDP_HD bool leads(const uint32_t*) const { return true; }
 };
 
 // Algorithm 1 for one ray: marches until it finishes (true) or is parked (false). Park is
-// parkRay, or on the GPU a warp-aggregated version of it (pt_kernels.cu).
+// parkRay, or on the GPU a warp-aggregated version of it (pt_worker.cuh). A ray that stops
+// again - after a relaunch (`relaunched`) or a failed park - first looks ahead
+// (cache/lookahead.h), one ray for all those stopping on the same brick with it (Park::leads):
+// a chain of waits is what the lookahead cuts, and a fresh ray's first stop is mostly on a brick
+// its whole tile shares (looking ahead there measured 1.6x slower frames, perlin, H100).
 template <class Pool, class Park = ParkOne>
-GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, Park park = {}) {
+GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bool relaunched,
+                      Park park = {}) {
   const FrameSetup& f = ctx.frame;
   Ray ray = f.primaryRay(static_cast<int>(pixel) % f.width, static_cast<int>(pixel) / f.width);
-  for (;;) {
+  for (bool again = relaunched;; again = true) {
     RayState s = loadRayState(&ctx.payload[pixel]);
     CachedAccess<Pool, StartProduction> access{ctx.cache, pool, f.lod, StartProduction{&ctx}};
     MarchResult r = march(ray, f.lod, s, access);
     access.addCounts();
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) return true;
+    if (again && park.leads(access.stopEntry))
+      lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool, StartLookahead{&ctx},
+                                     ctx.lookahead);
     if (park(ctx, pixel, access.stopEntry)) return false;
   }
 }
@@ -256,28 +307,50 @@ GVDP_HD GVDP_INLINE uint32_t claimFreshItems(const PtContext& ctx) {
   return first < ctx.itemCount ? first : ctx.itemCount;
 }
 
-GVDP_HD GVDP_INLINE void releaseTaskId(const PtContext& ctx, uint32_t id) {
-  ringPush(ctx.freeIds, id);
-}
-
 // One worker's single-threaded version of the end of a production task (CPU backend).
 GVDP_HD GVDP_INLINE void finishProductionTask(const PtContext& ctx, uint32_t id) {
   atomicAdd32(ctx.counter(PT_RELAUNCHED), requeueRays(ctx, closeWaitList(ctx, id)));
   releaseTaskId(ctx, id);
 }
 
-// Where a backend keeps pt's buffers: rings of rayCapacity (pixels) and taskCapacity (task ids)
-// slots, the task table and wait lists, PT_COUNTER_COUNT * PT_COUNTER_STRIDE counters.
+// A ring capacity for at most n items at once: a power of two > n.
+GVDP_HD GVDP_INLINE uint32_t ringCapacity(uint32_t n) {
+  uint32_t c = 1;
+  while (c <= n) c <<= 1;
+  return c;
+}
+
+// The sizes of pt's buffers for a frame of `pixels` rays and `workers` workers (the capacity
+// argument at the top): the backends allocate them, the memory estimate adds them up.
+struct PtLayout {
+  uint32_t pixels, workers;
+
+  uint32_t freeIds() const { return pixels + workers; }  // ids of freeIds; then the lookahead's
+  uint32_t taskIds() const { return freeIds() + PT_LOOKAHEAD_IDS; }
+  uint32_t rayCapacity() const { return ringCapacity(pixels); }
+  uint32_t taskCapacity() const { return ringCapacity(taskIds()); }
+  uint32_t freeCapacity() const { return ringCapacity(freeIds()); }
+  static uint32_t lookaheadCapacity() { return ringCapacity(PT_LOOKAHEAD_IDS); }
+  static constexpr size_t COUNTERS = size_t{PT_COUNTER_COUNT} * PT_COUNTER_STRIDE;
+  size_t bytes() const {
+    size_t slots = size_t{rayCapacity()} + taskCapacity() + freeCapacity() + lookaheadCapacity();
+    return slots * sizeof(uint64_t) + size_t{taskIds()} * (sizeof(BrickKey) + sizeof(uint32_t)) +
+           size_t{pixels} * sizeof(uint32_t) + COUNTERS * sizeof(uint32_t);
+  }
+};
+
+// Where a backend keeps pt's buffers, of the layout's sizes: the rings' slots, the task table and
+// wait heads (taskIds), the wait links (pixels), the counters.
 struct PtBuffers {
-  uint64_t *raySlots, *taskSlots, *freeSlots;
-  uint32_t rayCapacity, taskCapacity;
+  uint64_t *raySlots, *taskSlots, *freeSlots, *lookaheadSlots;
   BrickKey* taskKey;
   uint32_t *waitHead, *waitNext, *counters;
+  PtLayout layout;
 };
 
 // The frame's context over a backend's buffers.
 inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayState* payload,
-                               const PtBuffers& b) {
+                               const PtBuffers& b, uint32_t lookahead) {
   PtContext ctx{};
   ctx.frame = f;
   ctx.cache = cache;
@@ -288,9 +361,12 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
     return Ring{slots, capacity - 1, ctx.counter(head), ctx.counter(PtCounter(head + 1)),
                 ctx.counter(PtCounter(head + 2))};
   };
-  ctx.rays = ring(b.raySlots, b.rayCapacity, PT_RAY_HEAD);
-  ctx.tasks = ring(b.taskSlots, b.taskCapacity, PT_TASK_HEAD);
-  ctx.freeIds = ring(b.freeSlots, b.taskCapacity, PT_FREE_HEAD);
+  ctx.rays = ring(b.raySlots, b.layout.rayCapacity(), PT_RAY_HEAD);
+  ctx.tasks = ring(b.taskSlots, b.layout.taskCapacity(), PT_TASK_HEAD);
+  ctx.freeIds = ring(b.freeSlots, b.layout.freeCapacity(), PT_FREE_HEAD);
+  ctx.lookaheadIds = ring(b.lookaheadSlots, PtLayout::lookaheadCapacity(), PT_LOOK_HEAD);
+  ctx.firstLookaheadId = b.layout.freeIds();
+  ctx.lookahead = lookahead;
   ctx.taskKey = b.taskKey;
   ctx.waitHead = b.waitHead;
   ctx.waitNext = b.waitNext;
@@ -298,18 +374,12 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
   return ctx;
 }
 
-// The counters at the start of a frame: every ray live, every one of `ids` task ids free.
-inline void initialPtCounters(uint32_t* c, uint32_t pixels, uint32_t ids) {
-  for (int i = 0; i < PT_COUNTER_COUNT * PT_COUNTER_STRIDE; ++i) c[i] = 0;
-  c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = ids;
-  c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = pixels;
-}
-
-// A ring capacity for at most n items at once: a power of two > n.
-GVDP_HD GVDP_INLINE uint32_t ringCapacity(uint32_t n) {
-  uint32_t c = 1;
-  while (c <= n) c <<= 1;
-  return c;
+// The counters at the start of a frame: every ray live, every task id free.
+inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
+  for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = 0;
+  c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = layout.freeIds();
+  c[PT_LOOK_TAIL * PT_COUNTER_STRIDE] = c[PT_LOOK_READY * PT_COUNTER_STRIDE] = PT_LOOKAHEAD_IDS;
+  c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = layout.pixels;
 }
 
 }  // namespace gvdp::detail

@@ -12,14 +12,12 @@ namespace {
 
 class PtCpu final : public SpFrameCpu {
  public:
-  PtCpu(const SchedulerOptions& o, ProducerKernelsPtr p) : SpFrameCpu(o, std::move(p)) {}
+  PtCpu(const SchedulerOptions& o, ProducerKernelsPtr p)
+      : SpFrameCpu(o, std::move(p)), lookahead_(o.lookahead) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
-    m.push_back({"pt_queues_and_wait_lists",
-                 (raySlots_.size() + taskSlots_.size() + freeSlots_.size()) * sizeof(uint64_t) +
-                     (waitHead_.size() + waitNext_.size() + counters_.size()) * sizeof(uint32_t) +
-                     taskKey_.size() * sizeof(BrickKey)});
+    m.push_back({"pt_queues_and_wait_lists", layout_.bytes()});
     return m;
   }
 
@@ -41,28 +39,30 @@ class PtCpu final : public SpFrameCpu {
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
     stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
+    stats.lookaheadClaims = *ctx.counter(PT_LOOKAHEAD);
   }
 
   PtContext prepare(const FrameSetup& f) {
-    uint32_t n = static_cast<uint32_t>(f.pixelCount());
-    uint32_t ids = n + static_cast<uint32_t>(ThreadPool::global().size());
+    layout_ = {static_cast<uint32_t>(f.pixelCount()),
+               static_cast<uint32_t>(ThreadPool::global().size())};
     auto initRing = [](std::vector<uint64_t>& slots, uint32_t capacity, uint32_t filled) {
       slots.resize(capacity);
       for (uint32_t i = 0; i < capacity; ++i) slots[i] = ringInitialSlot(i, filled);
     };
-    initRing(raySlots_, ringCapacity(n), 0);
-    initRing(taskSlots_, ringCapacity(ids), 0);
-    initRing(freeSlots_, ringCapacity(ids), ids);
-    taskKey_.resize(ids);
-    waitHead_.assign(ids, LIST_CLOSED);
-    waitNext_.assign(n, LIST_END);
-    counters_.resize(PT_COUNTER_COUNT * PT_COUNTER_STRIDE);
-    initialPtCounters(counters_.data(), n, ids);
-    return makePtContext(
-        f, cache_.view(), payload_.data(),
-        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
-         static_cast<uint32_t>(raySlots_.size()), static_cast<uint32_t>(taskSlots_.size()),
-         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data()});
+    initRing(raySlots_, layout_.rayCapacity(), 0);
+    initRing(taskSlots_, layout_.taskCapacity(), 0);
+    initRing(freeSlots_, layout_.freeCapacity(), layout_.freeIds());
+    initRing(lookaheadSlots_, PtLayout::lookaheadCapacity(), PT_LOOKAHEAD_IDS);
+    taskKey_.resize(layout_.taskIds());
+    waitHead_.assign(layout_.taskIds(), LIST_CLOSED);
+    waitNext_.assign(layout_.pixels, LIST_END);
+    counters_.resize(PtLayout::COUNTERS);
+    initialPtCounters(counters_.data(), layout_);
+    return makePtContext(f, cache_.view(), payload_.data(),
+                         {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
+                          lookaheadSlots_.data(), taskKey_.data(), waitHead_.data(),
+                          waitNext_.data(), counters_.data(), layout_},
+                         lookahead_);
   }
 
   // One worker (a thread) of pt's loop; each task is a record of the timeline.
@@ -88,14 +88,14 @@ class PtCpu final : public SpFrameCpu {
       timed(TaskKind::Render, [&] {
         uint32_t batch[PT_BATCH];
         for (uint32_t i = 0; i < n; ++i) batch[i] = ringTake(ctx.rays, position + i);
-        renderRays(n, [&](uint32_t i) { return static_cast<int>(batch[i]); });
+        renderRays(n, true, [&](uint32_t i) { return static_cast<int>(batch[i]); });
       });
     }
     uint32_t claimFresh() const { return claimFreshItems(ctx); }
     void renderFresh(uint32_t first) const {
       timed(TaskKind::Render, [&] {
         uint32_t n = ctx.itemCount - first < PT_BATCH ? ctx.itemCount - first : PT_BATCH;
-        renderRays(n,
+        renderRays(n, false,
                    [&](uint32_t i) { return tiledPixel(ctx.frame, static_cast<int>(first + i)); });
       });
     }
@@ -104,11 +104,11 @@ class PtCpu final : public SpFrameCpu {
 
     // Runs rays pixel(0 .. n-1) (a pixel < 0 is none) until each finishes or parks.
     template <class PixelOf>
-    void renderRays(uint32_t n, PixelOf pixel) const {
+    void renderRays(uint32_t n, bool relaunched, PixelOf pixel) const {
       uint32_t finished = 0;
       for (uint32_t i = 0; i < n; ++i) {
         int p = pixel(i);
-        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p))) ++finished;
+        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), relaunched)) ++finished;
       }
       if (finished) atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);
       atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
@@ -122,7 +122,9 @@ class PtCpu final : public SpFrameCpu {
     }
   };
 
-  std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_;
+  uint32_t lookahead_;
+  PtLayout layout_{};
+  std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_;
   std::vector<uint32_t> waitHead_, waitNext_, counters_;
   std::vector<BrickKey> taskKey_;
 };

@@ -12,14 +12,14 @@ class PtCuda final : public SpFrameCuda {
  public:
   PtCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
       : SpFrameCuda(o, std::move(producer)),
-        counters_(PT_COUNTER_COUNT * PT_COUNTER_STRIDE),
-        blocks_(cudaProducer().ptWorkerBlocks()) {}
+        counters_(PtLayout::COUNTERS),
+        lookaheadSlots_(PtLayout::lookaheadCapacity()),
+        blocks_(cudaProducer().ptWorkerBlocks()),
+        lookahead_(o.lookahead) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCuda::memory();
-    m.push_back({"pt_queues_and_wait_lists",
-                 raySlots_.bytes() + taskSlots_.bytes() + freeSlots_.bytes() + taskKey_.bytes() +
-                     waitHead_.bytes() + waitNext_.bytes() + counters_.bytes()});
+    m.push_back({"pt_queues_and_wait_lists", layout_.bytes()});
     return m;
   }
 
@@ -45,42 +45,43 @@ class PtCuda final : public SpFrameCuda {
     readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
     stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
+    stats.lookaheadClaims = c[PT_LOOKAHEAD * PT_COUNTER_STRIDE];
     stats.degraded = stats.degraded || stats.cache.failed != 0;
   }
 
   void resize(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
     if (waitNext_.size() == n) return;
-    ids_ = n + static_cast<uint32_t>(blocks_) * 8;  // pixels + worker warps (pt_body.h)
-    raySlots_ = DeviceBuffer<uint64_t>(ringCapacity(n));
-    taskSlots_ = DeviceBuffer<uint64_t>(ringCapacity(ids_));
-    freeSlots_ = DeviceBuffer<uint64_t>(ringCapacity(ids_));
-    taskKey_ = DeviceBuffer<BrickKey>(ids_);
-    waitHead_ = DeviceBuffer<uint32_t>(ids_);
+    layout_ = {n, static_cast<uint32_t>(blocks_) * 8};  // worker warps (pt_worker.cuh: PT_WARPS)
+    raySlots_ = DeviceBuffer<uint64_t>(layout_.rayCapacity());
+    taskSlots_ = DeviceBuffer<uint64_t>(layout_.taskCapacity());
+    freeSlots_ = DeviceBuffer<uint64_t>(layout_.freeCapacity());
+    taskKey_ = DeviceBuffer<BrickKey>(layout_.taskIds());
+    waitHead_ = DeviceBuffer<uint32_t>(layout_.taskIds());
     waitNext_ = DeviceBuffer<uint32_t>(n);
   }
 
   // The frame's queues: empty rings, every task id free, every ray fresh and live.
   PtContext prepare(const FrameSetup& f) {
-    uint32_t n = static_cast<uint32_t>(f.pixelCount());
     fillDevice(buffers_.payload.data(), 0, buffers_.payload.bytes(), stream());
     std::vector<uint32_t> c(counters_.size());
-    initialPtCounters(c.data(), n, ids_);
+    initialPtCounters(c.data(), layout_);
     writeDevice(counters_.data(), c.data(), counters_.bytes(), stream());
-    PtContext ctx = makePtContext(
-        f, cache_.view(), buffers_.payload.data(),
-        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
-         static_cast<uint32_t>(raySlots_.size()), static_cast<uint32_t>(taskSlots_.size()),
-         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data()});
-    launchPtRingsInit(ctx, ids_, stream());
+    PtContext ctx = makePtContext(f, cache_.view(), buffers_.payload.data(),
+                                  {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
+                                   lookaheadSlots_.data(), taskKey_.data(), waitHead_.data(),
+                                   waitNext_.data(), counters_.data(), layout_},
+                                  lookahead_);
+    launchPtRingsInit(ctx, layout_, stream());
     return ctx;
   }
 
   DeviceBuffer<uint32_t> counters_, waitHead_, waitNext_;
-  DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_;
+  DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_;
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
-  uint32_t ids_ = 0;
+  uint32_t lookahead_;
+  PtLayout layout_{};
 };
 
 }  // namespace

@@ -8,7 +8,7 @@
 
 namespace gvdp::detail {
 
-// Empties the ray and task rings and fills the free task-id ring with ids 0..ids-1.
-void launchPtRingsInit(const PtContext& ctx, uint32_t ids, cudaStream_t stream);
+// Empties the ray and task rings and fills the free task-id rings (pt_body.h: PtLayout).
+void launchPtRingsInit(const PtContext& ctx, const PtLayout& layout, cudaStream_t stream);
 
 }  // namespace gvdp::detail

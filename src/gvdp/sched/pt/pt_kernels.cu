@@ -16,10 +16,11 @@ void initRing(const Ring& ring, uint32_t filled, cudaStream_t stream) {
 
 }  // namespace
 
-void launchPtRingsInit(const PtContext& ctx, uint32_t ids, cudaStream_t stream) {
+void launchPtRingsInit(const PtContext& ctx, const PtLayout& layout, cudaStream_t stream) {
   initRing(ctx.rays, 0, stream);
   initRing(ctx.tasks, 0, stream);
-  initRing(ctx.freeIds, ids, stream);
+  initRing(ctx.freeIds, layout.freeIds(), stream);
+  initRing(ctx.lookaheadIds, PT_LOOKAHEAD_IDS, stream);
 }
 
 }  // namespace gvdp::detail

@@ -86,11 +86,19 @@ struct ParkWarp {
     }
     return __shfl_sync(group, parked, leader);
   }
+
+  // One lane of those that stopped on the same brick together looks ahead.
+  __device__ bool leads(const uint32_t* stopEntry) const {
+    unsigned group =
+        __match_any_sync(__activemask(), reinterpret_cast<unsigned long long>(stopEntry));
+    return static_cast<int>(threadIdx.x & 31) == __ffs(static_cast<int>(group)) - 1;
+  }
 };
 
 __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, int pixel,
-                                   int lane) {
-  bool finished = pixel >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), ParkWarp{});
+                                   bool relaunched, int lane) {
+  bool finished =
+      pixel >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), relaunched, ParkWarp{});
   unsigned done = __ballot_sync(FULL_MASK, finished);
   if (lane == 0) {
     if (done) atomicSub(ctx.counter(PT_LIVE_RAYS), static_cast<uint32_t>(__popc(done)));
@@ -253,7 +261,7 @@ struct WarpWorker {
     span.begin(TaskKind::Render);
     int pixel =
         lane < static_cast<int>(n) ? static_cast<int>(ringTake(ctx.rays, position + lane)) : -1;
-    renderLanes(ctx, pool, pixel, lane);
+    renderLanes(ctx, pool, pixel, true, lane);
     worked();
   }
   __device__ uint32_t claimFresh() const {
@@ -265,7 +273,8 @@ struct WarpWorker {
     span.begin(TaskKind::Render);
     uint32_t item = first + static_cast<uint32_t>(lane);
     renderLanes(ctx, pool,
-                item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, lane);
+                item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, false,
+                lane);
     worked();
   }
   __device__ void idle() {
