@@ -59,11 +59,12 @@ void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, in
       unsampled[k] += pt.stats[f].cache.unsampled;
       produced[k] += pt.stats[f].cache.produced;
     }
-    std::printf("[ measure ] %s pt lookahead %u, %dx%d x%d: %llu claimed ahead, %llu of %llu "
-                "produced bricks unsampled\n",
-                scene.c_str(), lookaheads[k], w, h, FRAMES, static_cast<unsigned long long>(claims[k]),
-                static_cast<unsigned long long>(unsampled[k]),
-                static_cast<unsigned long long>(produced[k]));
+    std::printf(
+        "[ measure ] %s pt lookahead %u, %dx%d x%d: %llu claimed ahead, %llu of %llu "
+        "produced bricks unsampled\n",
+        scene.c_str(), lookaheads[k], w, h, FRAMES, static_cast<unsigned long long>(claims[k]),
+        static_cast<unsigned long long>(unsampled[k]),
+        static_cast<unsigned long long>(produced[k]));
   }
   EXPECT_EQ(claims[0], 0u);
   EXPECT_EQ(unsampled[0], 0u) << "without lookahead every produced brick is sampled";

@@ -74,7 +74,8 @@ inline std::string sceneName(int i) {
 
 }  // namespace gvdp::detail::test
 
-#define GVDP_REQUIRE_GPU()                                                           \
-  do {                                                                               \
-    if (!::gvdp::detail::cudaDeviceAvailable()) GTEST_SKIP() << ::gvdp::detail::cudaDeviceSummary(); \
+#define GVDP_REQUIRE_GPU()                                 \
+  do {                                                     \
+    if (!::gvdp::detail::cudaDeviceAvailable())            \
+      GTEST_SKIP() << ::gvdp::detail::cudaDeviceSummary(); \
   } while (0)

@@ -2,7 +2,14 @@
 // argv[1]: 0 = WHILE node set from the device (as gvdp's graph scheduler), 1 = plain graph.
 #include <cstdio>
 #include <cstdlib>
-#define CK(x) do { cudaError_t e = (x); if (e != cudaSuccess) { printf("%s: %s\n", #x, cudaGetErrorString(e)); exit(1); } } while (0)
+#define CK(x)                                        \
+  do {                                               \
+    cudaError_t e = (x);                             \
+    if (e != cudaSuccess) {                          \
+      printf("%s: %s\n", #x, cudaGetErrorString(e)); \
+      exit(1);                                       \
+    }                                                \
+  } while (0)
 
 __global__ void body(unsigned* counter) {
   __shared__ unsigned s[128];
@@ -34,12 +41,14 @@ int main(int argc, char** argv) {
     cudaGraphNode_t node;
     CK(cudaGraphAddNode(&node, graph, nullptr, nullptr, 0, &p));
     cudaGraph_t bodyGraph = p.conditional.phGraph_out[0];
-    CK(cudaStreamBeginCaptureToGraph(stream, bodyGraph, nullptr, nullptr, 0, cudaStreamCaptureModeRelaxed));
+    CK(cudaStreamBeginCaptureToGraph(stream, bodyGraph, nullptr, nullptr, 0,
+                                     cudaStreamCaptureModeRelaxed));
     body<<<4, 128, 0, stream>>>(counter);
     control<<<1, 1, 0, stream>>>(counter, h);
     CK(cudaStreamEndCapture(stream, &bodyGraph));
   } else {
-    CK(cudaStreamBeginCaptureToGraph(stream, graph, nullptr, nullptr, 0, cudaStreamCaptureModeRelaxed));
+    CK(cudaStreamBeginCaptureToGraph(stream, graph, nullptr, nullptr, 0,
+                                     cudaStreamCaptureModeRelaxed));
     body<<<4, 128, 0, stream>>>(counter);
     CK(cudaStreamEndCapture(stream, &graph));
   }
@@ -48,6 +57,7 @@ int main(int argc, char** argv) {
   CK(cudaGraphLaunch(exec, nullptr));
   unsigned v = 0;
   CK(cudaMemcpy(&v, counter, 4, cudaMemcpyDeviceToHost));
-  printf("graph probe mode %d: counter %u (expected %u)\n", mode, v, mode == 0 ? 127u * 4 * 2 : 127u * 4);
+  printf("graph probe mode %d: counter %u (expected %u)\n", mode, v,
+         mode == 0 ? 127u * 4 * 2 : 127u * 4);
   return 0;
 }

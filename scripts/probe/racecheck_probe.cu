@@ -2,9 +2,9 @@
 // writes 64 words, then raises a flag; warp 1 waits for the flag, then reads them. Each kernel
 // uses one kind of access for the data and the flag; run under racecheck, a kernel whose name
 // shows in a hazard report uses accesses the tool considers racing.
-#include <cuda/atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <cuda/atomic>
 
 using Ref = cuda::atomic_ref<unsigned, cuda::thread_scope_block>;
 
@@ -17,10 +17,10 @@ __global__ void probe(unsigned* out) {
   int lane = threadIdx.x & 31, warp = threadIdx.x >> 5;
   if (warp == 0) {
     for (int i = lane; i < 64; i += 32) {
-      if (Kind == 0) data[i] = i;                                       // plain
-      if (Kind == 1) *(volatile unsigned*)&data[i] = i;                 // volatile
+      if (Kind == 0) data[i] = i;                                        // plain
+      if (Kind == 1) *(volatile unsigned*)&data[i] = i;                  // volatile
       if (Kind == 2) Ref(data[i]).store(i, cuda::memory_order_relaxed);  // st.relaxed.cta
-      if (Kind == 3) atomicExch(&data[i], i);                           // atom
+      if (Kind == 3) atomicExch(&data[i], i);                            // atom
       if (Kind == 4) data[i] = i;  // plain data, release/acquire flag
     }
     __syncwarp();
@@ -46,11 +46,21 @@ int main(int argc, char** argv) {
   cudaMalloc(&out, 32 * sizeof(unsigned));
   const char* names[] = {"plain", "volatile", "relaxed_cta", "atomic", "plain_with_release_flag"};
   switch (kind) {
-    case 0: probe<0><<<1, 64>>>(out); break;
-    case 1: probe<1><<<1, 64>>>(out); break;
-    case 2: probe<2><<<1, 64>>>(out); break;
-    case 3: probe<3><<<1, 64>>>(out); break;
-    default: probe<4><<<1, 64>>>(out); break;
+    case 0:
+      probe<0><<<1, 64>>>(out);
+      break;
+    case 1:
+      probe<1><<<1, 64>>>(out);
+      break;
+    case 2:
+      probe<2><<<1, 64>>>(out);
+      break;
+    case 3:
+      probe<3><<<1, 64>>>(out);
+      break;
+    default:
+      probe<4><<<1, 64>>>(out);
+      break;
   }
   cudaDeviceSynchronize();
   printf("probe kind: %s\n", names[kind]);

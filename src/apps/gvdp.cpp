@@ -467,8 +467,9 @@ int run(int argc, char** argv) {
   benchCmd->add_option("--width", bench.width, "image width (GPU 1500, CPU 160)");
   benchCmd->add_option("--height", bench.height, "image height (GPU 1000, CPU 100)");
   benchCmd->add_option("--pool-bricks", bench.poolBricks, "brick pool slots");
-  benchCmd->add_option("--lookahead", bench.lookahead, "pt's lookahead in bricks (default " +
-                                                           std::to_string(DEFAULT_LOOKAHEAD) + ")");
+  benchCmd->add_option(
+      "--lookahead", bench.lookahead,
+      "pt's lookahead in bricks (default " + std::to_string(DEFAULT_LOOKAHEAD) + ")");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");
   benchCmd->add_option("--out", bench.out, "results JSON (default results.json)");
   benchCmd->add_option("--csv", bench.csv, "also a CSV file");

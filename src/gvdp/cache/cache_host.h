@@ -15,9 +15,9 @@ namespace gvdp::detail {
 
 struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
-  uint64_t resident = 0;  // slots holding a brick at the end of the frame
+  uint64_t resident = 0;   // slots holding a brick at the end of the frame
   uint64_t unsampled = 0;  // bricks produced in the frame that no ray sampled (over-production)
-  uint32_t refills = 0;   // free-list refills after the frame-start one
+  uint32_t refills = 0;    // free-list refills after the frame-start one
   // What the rays did (MarchCounter): samples, brick lookups, lookups that skipped empty space.
   uint64_t samples = 0, lookups = 0, skips = 0;
 };

@@ -30,13 +30,13 @@ struct FrameStats {
   int index = 0;
   double ms = 0.0;  // GPU: CUDA events around the frame's work; CPU: wall clock
   int64_t unfinishedPixels = 0;
-  int passes = 0;               // render passes (sp iterations)
-  bool degraded = false;        // some bricks could not be produced: coarser levels stood in
-  uint64_t launches = 0;        // dp: device-side launches; pt: tasks run (render + production)
-  uint64_t launchFailures = 0;  // dp: launches refused (pending-launch buffer full); pt: no id
-  uint64_t deferred = 0;        // dp: productions left to the sweep (launch depth limit)
-  int64_t sweptPixels = 0;      // dp: rays the device-side schedule left to the sp sweep
-  uint64_t relaunchedRays = 0;  // pt: parked rays a production queued again
+  int passes = 0;                // render passes (sp iterations)
+  bool degraded = false;         // some bricks could not be produced: coarser levels stood in
+  uint64_t launches = 0;         // dp: device-side launches; pt: tasks run (render + production)
+  uint64_t launchFailures = 0;   // dp: launches refused (pending-launch buffer full); pt: no id
+  uint64_t deferred = 0;         // dp: productions left to the sweep (launch depth limit)
+  int64_t sweptPixels = 0;       // dp: rays the device-side schedule left to the sp sweep
+  uint64_t relaunchedRays = 0;   // pt: parked rays a production queued again
   uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline

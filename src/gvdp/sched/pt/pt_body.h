@@ -29,8 +29,8 @@
 namespace gvdp::detail {
 
 constexpr uint32_t LIST_END = 0xffffffffu, LIST_CLOSED = 0xfffffffeu;
-constexpr int PT_BATCH = 32;           // rays per render task (a warp)
-constexpr int PT_COUNTER_STRIDE = 32;  // counters sit 128 bytes apart (no false sharing)
+constexpr int PT_BATCH = 32;                     // rays per render task (a warp)
+constexpr int PT_COUNTER_STRIDE = 32;            // counters sit 128 bytes apart (no false sharing)
 constexpr uint32_t PT_LOOKAHEAD_IDS = 1u << 15;  // task ids for the lookahead's claims
 
 enum PtCounter : int {
@@ -124,14 +124,14 @@ struct PtContext {
   CacheView cache;
   RayState* payload;
   Ring rays, tasks, freeIds;
-  Ring lookaheadIds;           // values v: task id firstLookaheadId + v
-  uint32_t firstLookaheadId;   // ids below come from freeIds
-  uint32_t lookahead;          // bricks a stopped ray claims ahead of it (0: none)
-  BrickKey* taskKey;   // per task id
-  uint32_t* waitHead;  // per task id: LIST_END, a pixel, or LIST_CLOSED
-  uint32_t* waitNext;  // per pixel
-  uint32_t* counters;  // PtCounter, PT_COUNTER_STRIDE apart
-  uint32_t itemCount;  // items of the tiled screen (tileCount * 64)
+  Ring lookaheadIds;          // values v: task id firstLookaheadId + v
+  uint32_t firstLookaheadId;  // ids below come from freeIds
+  uint32_t lookahead;         // bricks a stopped ray claims ahead of it (0: none)
+  BrickKey* taskKey;          // per task id
+  uint32_t* waitHead;         // per task id: LIST_END, a pixel, or LIST_CLOSED
+  uint32_t* waitNext;         // per pixel
+  uint32_t* counters;         // PtCounter, PT_COUNTER_STRIDE apart
+  uint32_t itemCount;         // items of the tiled screen (tileCount * 64)
 
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
 };

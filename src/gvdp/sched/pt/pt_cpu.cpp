@@ -58,11 +58,11 @@ class PtCpu final : public SpFrameCpu {
     waitNext_.assign(layout_.pixels, LIST_END);
     counters_.resize(PtLayout::COUNTERS);
     initialPtCounters(counters_.data(), layout_);
-    return makePtContext(f, cache_.view(), payload_.data(),
-                         {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
-                          lookaheadSlots_.data(), taskKey_.data(), waitHead_.data(),
-                          waitNext_.data(), counters_.data(), layout_},
-                         lookahead_);
+    return makePtContext(
+        f, cache_.view(), payload_.data(),
+        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(), lookaheadSlots_.data(),
+         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
+        lookahead_);
   }
 
   // One worker (a thread) of pt's loop; each task is a record of the timeline.

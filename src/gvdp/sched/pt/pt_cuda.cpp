@@ -67,11 +67,11 @@ class PtCuda final : public SpFrameCuda {
     std::vector<uint32_t> c(counters_.size());
     initialPtCounters(c.data(), layout_);
     writeDevice(counters_.data(), c.data(), counters_.bytes(), stream());
-    PtContext ctx = makePtContext(f, cache_.view(), buffers_.payload.data(),
-                                  {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
-                                   lookaheadSlots_.data(), taskKey_.data(), waitHead_.data(),
-                                   waitNext_.data(), counters_.data(), layout_},
-                                  lookahead_);
+    PtContext ctx = makePtContext(
+        f, cache_.view(), buffers_.payload.data(),
+        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(), lookaheadSlots_.data(),
+         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
+        lookahead_);
     launchPtRingsInit(ctx, layout_, stream());
     return ctx;
   }
