@@ -251,7 +251,7 @@ struct ParkOne {
 // again - after a relaunch (`relaunched`) or a failed park - first looks ahead
 // (cache/lookahead.h), one ray for all those stopping on the same brick with it (Park::leads):
 // a chain of waits is what the lookahead cuts, and a fresh ray's first stop is mostly on a brick
-// its whole tile shares (looking ahead there measured 1.6x slower frames, perlin, H100).
+// its whole tile shares.
 template <class Pool, class Park = ParkOne>
 GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bool relaunched,
                       Park park = {}) {
