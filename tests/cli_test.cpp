@@ -78,6 +78,11 @@ TEST(Cli, PoolSizesOutOfRangeAreRefusedBeforeAnyArithmetic) {
   expectInputError("render --backend cpu --pending-launches 9000000000000 --scheduler dp" + out,
                    "--pending-launches 9000000000000");
   expectInputError("bench" + TINY_BENCH + " --pool-bricks 0" + out, "--pool-bricks 0");
+  expectInputError("render --backend cpu --lookahead 65 --scheduler pt" + out,
+                   "bad --lookahead 65 (expected 0..64)");
+  expectInputError("render --backend cpu --lookahead -1 --scheduler pt" + out, "--lookahead -1");
+  expectInputError("bench" + TINY_BENCH + " --lookahead 9000000000000" + out,
+                   "--lookahead 9000000000000");
 }
 
 // A pool inside the accepted range but larger than the machine: one line saying how much it
@@ -175,6 +180,10 @@ TEST(Cli, FlagsACommandDoesNotUseAreRefused) {
         std::string("render --backend cpu --pending-launches 100 --scheduler ") + scheduler + TINY +
             out,
         std::string("--pending-launches 100 is used by scheduler dp only, not by ") + scheduler);
+  for (const char* scheduler : {"sp", "dp", "direct"})
+    expectInputError(
+        std::string("render --backend cpu --lookahead 4 --scheduler ") + scheduler + TINY + out,
+        std::string("--lookahead 4 is used by scheduler pt only, not by ") + scheduler);
   expectInputError("timeline --backend cpu --frame 0 --scheduler pt --pending-launches 100 --out " +
                        dir + "/t.png",
                    "--pending-launches 100");
