@@ -1,5 +1,6 @@
 // The persistent-threads scheduler (pt) as one protocol for both backends: workers (GPU warps,
-// CPU threads) pull tasks from device work queues until every ray of the frame has finished.
+// CPU threads) pull tasks from device work queues until every ray of the frame has finished and
+// every production task started in it has run.
 //
 // Queues (lock-free rings of uint32, one atomic per batch):
 //   tasks    production task ids, served first;
@@ -47,7 +48,7 @@ enum PtCounter : int {
   PT_LOOK_TAIL,
   PT_LOOK_READY,
   PT_NEXT_ITEM,     // next item of the tiled screen (fresh rays)
-  PT_LIVE_RAYS,     // rays not finished; the frame is over at 0
+  PT_LIVE_WORK,     // rays and production tasks not finished; the frame is over at 0
   PT_PRODUCTIONS,   // production tasks run
   PT_RELAUNCHED,    // rays queued again by a production
   PT_RENDER_TASKS,  // render tasks run (fresh and relaunched)
@@ -188,6 +189,7 @@ GVDP_HD GVDP_INLINE bool startTask(const PtContext& ctx, uint32_t id, int level,
   storeRelaxed32(&ctx.waitHead[id], LIST_END);
   fenceSeqCst();  // the key and the list before the name
   if (atomicCas32(entry, ENTRY_MISSING, ENTRY_PRODUCTION_TASK + id) == ENTRY_MISSING) {
+    atomicAdd32(ctx.counter(PT_LIVE_WORK), 1u);  // the frame ends after the task (endTask)
     ringPush(ctx.tasks, id);
     return true;
   }
@@ -273,10 +275,10 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
 
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
-// PT_BATCH items of the tiled screen, until no ray of the frame is left. The Worker supplies the
-// steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which with nothing to take
-// helps a production of its block before it idles):
-//   uint32_t liveRays()                                     the frame is over at 0
+// PT_BATCH items of the tiled screen, until no ray or task of the frame is left. The Worker
+// supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which with
+// nothing to take helps a production of its block before it idles):
+//   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
 //   void produce(uint32_t position)                         the task at a claimed position
 //   void renderQueued(uint32_t position, uint32_t n)        n claimed relaunched rays
@@ -285,7 +287,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
 //   void idle(), finish()                                   nothing to take; the loop is over
 template <class Worker>
 GVDP_HD void ptWorkerLoop(const PtContext& ctx, Worker& w) {
-  while (w.liveRays() != 0) {
+  while (w.liveWork() != 0) {
     uint32_t position = 0;
     if (w.claim(ctx.tasks, 1, &position)) {
       w.produce(position);
@@ -307,10 +309,19 @@ GVDP_HD GVDP_INLINE uint32_t claimFreshItems(const PtContext& ctx) {
   return first < ctx.itemCount ? first : ctx.itemCount;
 }
 
+// The end of production task `id`, its rays queued again: the id back to its ring, the task off
+// the frame's live work. Every task started is run before the frame ends: a brick claimed by a
+// lookahead (or past a frame's budget) may have no ray waiting on it, and an entry left in
+// production would stop the next frame's rays on a task that never comes.
+GVDP_HD GVDP_INLINE void endTask(const PtContext& ctx, uint32_t id) {
+  releaseTaskId(ctx, id);
+  atomicAdd32(ctx.counter(PT_LIVE_WORK), 0u - 1u);
+}
+
 // One worker's single-threaded version of the end of a production task (CPU backend).
 GVDP_HD GVDP_INLINE void finishProductionTask(const PtContext& ctx, uint32_t id) {
   atomicAdd32(ctx.counter(PT_RELAUNCHED), requeueRays(ctx, closeWaitList(ctx, id)));
-  releaseTaskId(ctx, id);
+  endTask(ctx, id);
 }
 
 // A ring capacity for at most n items at once: a power of two > n.
@@ -379,7 +390,7 @@ inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
   for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = 0;
   c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = layout.freeIds();
   c[PT_LOOK_TAIL * PT_COUNTER_STRIDE] = c[PT_LOOK_READY * PT_COUNTER_STRIDE] = PT_LOOKAHEAD_IDS;
-  c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = layout.pixels;
+  c[PT_LIVE_WORK * PT_COUNTER_STRIDE] = layout.pixels;
 }
 
 }  // namespace gvdp::detail

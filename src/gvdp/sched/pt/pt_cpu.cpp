@@ -72,7 +72,7 @@ class PtCpu final : public SpFrameCpu {
     const ProducerKernels& producer;
     int worker;
 
-    uint32_t liveRays() const { return loadAcquire32(ctx.counter(PT_LIVE_RAYS)); }
+    uint32_t liveWork() const { return loadAcquire32(ctx.counter(PT_LIVE_WORK)); }
     uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
       return ringClaim(r, n, position);
     }
@@ -110,7 +110,7 @@ class PtCpu final : public SpFrameCpu {
         int p = pixel(i);
         if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), relaunched)) ++finished;
       }
-      if (finished) atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);
+      if (finished) atomicAdd32(ctx.counter(PT_LIVE_WORK), 0u - finished);
       atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
     }
     template <class Task>

@@ -1,6 +1,6 @@
 // The persistent kernel of the pt scheduler: every warp is a worker of pt's loop (pt_body.h) that
 // takes a production task (the warp produces the brick: 1000 samples over 32 lanes), up to 32
-// relaunched rays, or the next 8x4 pixels of the screen, until no ray of the frame is left.
+// relaunched rays, or the next 8x4 pixels of the screen, until no ray or task of the frame is left.
 // Timeline records are per warp: a span of consecutive tasks of one kind, closed when the warp
 // switches kind or finds no work (idle warps are idle on the timeline). A template on the
 // producer (producer_kernels_of.h); the rings' initialisation is in pt_kernels.cu.
@@ -101,7 +101,7 @@ __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, 
       pixel >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), relaunched, ParkWarp{});
   unsigned done = __ballot_sync(FULL_MASK, finished);
   if (lane == 0) {
-    if (done) atomicSub(ctx.counter(PT_LIVE_RAYS), static_cast<uint32_t>(__popc(done)));
+    if (done) atomicSub(ctx.counter(PT_LIVE_WORK), static_cast<uint32_t>(__popc(done)));
     atomicAdd(ctx.counter(PT_RENDER_TASKS), 1u);
   }
 }
@@ -225,7 +225,7 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
     atomicAdd(ctx.counter(PT_PRODUCTIONS), 1u);
-    releaseTaskId(ctx, id);
+    endTask(ctx, id);
   }
 }
 
@@ -242,9 +242,9 @@ struct WarpWorker {
   WarpSpan span;
   unsigned backoff = 32;
 
-  __device__ uint32_t liveRays() const {
+  __device__ uint32_t liveWork() const {
     uint32_t live = 0;
-    if (lane == 0) live = loadRelaxed32(ctx.counter(PT_LIVE_RAYS));
+    if (lane == 0) live = loadRelaxed32(ctx.counter(PT_LIVE_WORK));
     return __shfl_sync(FULL_MASK, live, 0);
   }
   __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
