@@ -83,6 +83,12 @@ TEST(Cli, PoolSizesOutOfRangeAreRefusedBeforeAnyArithmetic) {
   expectInputError("render --backend cpu --lookahead -1 --scheduler pt" + out, "--lookahead -1");
   expectInputError("bench" + TINY_BENCH + " --lookahead 9000000000000" + out,
                    "--lookahead 9000000000000");
+  expectInputError("render --backend cpu --budget-ms -1" + out, "bad --budget-ms -1");
+  expectInputError("render --backend cpu --budget-ms 60001" + out,
+                   "bad --budget-ms 60001 (expected 0..60000)");
+  expectInputError("render --backend cpu --budget-ms nan" + out, "--budget-ms");
+  expectInputError("render --backend cpu --budget-ms 8ms" + out, "8ms");
+  expectInputError("bench" + TINY_BENCH + " --budget-ms -0.5" + out, "bad --budget-ms -0.5");
 }
 
 // A pool inside the accepted range but larger than the machine: one line saying how much it
@@ -184,6 +190,8 @@ TEST(Cli, FlagsACommandDoesNotUseAreRefused) {
     expectInputError(
         std::string("render --backend cpu --lookahead 4 --scheduler ") + scheduler + TINY + out,
         std::string("--lookahead 4 is used by scheduler pt only, not by ") + scheduler);
+  expectInputError("render --backend cpu --scheduler direct --budget-ms 8" + TINY + out,
+                   "--budget-ms 8 is not used by scheduler direct");
   expectInputError("timeline --backend cpu --frame 0 --scheduler pt --pending-launches 100 --out " +
                        dir + "/t.png",
                    "--pending-launches 100");
@@ -211,6 +219,24 @@ TEST(Cli, PtRenderReportsItsTasksInStats) {
   EXPECT_EQ(j["frames"][0]["unfinished_pixels"], 0);
   EXPECT_EQ(j["pool_bricks"], DEFAULT_POOL_BRICKS_CPU) << "the pool really used, not 0";
   EXPECT_FALSE(j.contains("pending_launches")) << "pt has no pending-launch buffer";
+  std::filesystem::remove_all(dir);
+}
+
+// A budgeted render: every pixel finished, the pixels shown coarser counted per frame, the budget
+// in stats.json and the frames within it printed.
+TEST(Cli, BudgetedRenderReportsCoarserPixels) {
+  std::string dir = test::tempDir("cli_budget");
+  test::CommandResult r = test::runGvdp(
+      "render --backend cpu --scheduler sp --scene perlin --width 40 --height 24 --frames 2 "
+      "--budget-ms 0 --out " +
+      dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("budget 0.00 ms: 0 of 2 frames within it"), std::string::npos)
+      << r.output;
+  nlohmann::json j = readStats(dir);
+  EXPECT_EQ(j["budget_ms"], 0.0);
+  EXPECT_GT(j["frames"][0]["coarser_pixels"].get<int>(), 0);
+  EXPECT_EQ(j["frames"][0]["unfinished_pixels"], 0);
   std::filesystem::remove_all(dir);
 }
 

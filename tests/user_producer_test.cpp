@@ -10,6 +10,7 @@
 #endif
 
 #include "../examples/custom_producer/gyroid.h"
+#include "gvdp/base/clock.h"
 #include "gvdp/base/error.h"
 #include "gvdp/make_renderer.h"
 #include "gvdp/world/scene.h"
@@ -165,8 +166,8 @@ TEST(UserProducer, GpuSchedulersRenderTheSameGyroid) {
 #if GVDP_HAS_CUDA && defined(__CUDACC__)
 // Holds a stream for about `ns` nanoseconds.
 __global__ void busyKernel(uint64_t ns) {
-  uint64_t start = globalTimer();
-  while (globalTimer() - start < ns) __nanosleep(1000);
+  uint64_t start = clockNanoseconds();
+  while (clockNanoseconds() - start < ns) __nanosleep(1000);
 }
 #endif
 

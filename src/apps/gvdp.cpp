@@ -14,6 +14,7 @@
 #include "gvdp/base/gpu.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/bench/bench.h"
+#include "gvdp/bench/frame_stats.h"
 #include "gvdp/bench/sequence.h"
 #include "gvdp/cache/clipmap.h"
 #include "gvdp/io/output_paths.h"
@@ -43,6 +44,7 @@ struct RenderFlags {
   std::optional<int> frames, width, height;
   int levels = DEFAULT_LEVELS;
   std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead;
+  std::optional<double> budgetMs;
   float fov = DEFAULT_FOV_DEGREES;
 };
 
@@ -67,6 +69,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "pt: missing bricks a stopped ray claims ahead of it, 0.." +
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_LOOKAHEAD) + "; 0: off)");
+  cmd->add_option("--budget-ms", f.budgetMs,
+                  "frame-time budget: past it, rays whose brick is not ready show the nearest "
+                  "resident coarser level (produced for the next frames); 0: never wait; default "
+                  "off (exact frames)");
   cmd->add_option("--pool-bricks", f.poolBricks,
                   "brick pool slots (default: 500000 = 2 GB on the GPU, 32768 on the CPU; not "
                   "with direct)");
@@ -123,6 +129,15 @@ void refuseUnusedFlags(const RenderFlags& f, SchedulerKind kind) {
   GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.lookahead, "--lookahead ",
                    f.lookahead.value_or(0), " is used by scheduler pt only, not by ",
                    schedulerName(kind));
+  GVDP_INPUT_CHECK(!direct || !f.budgetMs, "--budget-ms ", f.budgetMs.value_or(0.0),
+                   " is not used by scheduler direct (it waits for no brick)");
+}
+
+double budgetFrom(const std::optional<double>& ms) {
+  if (!ms) return NO_BUDGET;
+  GVDP_INPUT_CHECK(*ms >= 0.0 && *ms <= MAX_BUDGET_MS, "bad --budget-ms ", *ms, " (expected 0..",
+                   MAX_BUDGET_MS, ")");
+  return *ms;
 }
 
 uint32_t lookaheadFrom(const std::optional<int64_t>& n) {
@@ -157,6 +172,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.poolBricks = poolBricksFrom(f.poolBricks, f.poolMb);
   o.scheduler.pendingLaunches = pendingLaunchesFrom(f.pendingLaunches);
   o.scheduler.lookahead = lookaheadFrom(f.lookahead);
+  o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
   o.scheduler.timeline = !f.timeline.empty();
@@ -209,10 +225,11 @@ int runRender(const RenderFlags& flags) {
     writePng(image, dir + name);
     if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
     frames.push_back(s);
-    std::printf("frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s\n",
+    std::printf("frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s%s\n",
                 s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
                 static_cast<unsigned long long>(s.cache.produced),
-                static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "");
+                static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "",
+                s.cache.coarser ? ("  coarser " + std::to_string(s.cache.coarser)).c_str() : "");
     if (s.launches && o.scheduler.kind == SchedulerKind::Pt)
       std::printf("           tasks %llu  relaunched rays %llu\n",
                   static_cast<unsigned long long>(s.launches),
@@ -233,6 +250,11 @@ int runRender(const RenderFlags& flags) {
   std::printf(
       "average %.2f ms per frame (%.1f FPS) over %zu frames; wrote %s/frame_*.png, %s/stats.json\n",
       mean, 1000.0 / std::max(mean, 1e-6), frames.size(), dir.c_str(), dir.c_str());
+  if (o.scheduler.budgetMs >= 0.0) {
+    BudgetStats b = budgetStats(frames, o.scheduler.budgetMs, o.width * o.height);
+    std::printf("budget %.2f ms: %zu of %zu frames within it, %.2f%% of pixels shown coarser\n",
+                o.scheduler.budgetMs, b.framesWithin, frames.size(), 100.0 * b.coarserShare);
+  }
   return 0;
 }
 
@@ -288,6 +310,7 @@ struct BenchFlags {
   std::string schedulers = "sp,dp,pt", backend = "auto", out = "results.json", csv, markdown;
   std::optional<int> frames, warmup, width, height;
   std::optional<int64_t> poolBricks, lookahead;
+  std::optional<double> budgetMs;
   bool scale = false;
 };
 
@@ -360,6 +383,7 @@ BenchOptions benchOptions(const BenchFlags& f) {
                    " (expected 0..100000)");
   o.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   o.lookahead = lookaheadFrom(f.lookahead);
+  o.budgetMs = budgetFrom(f.budgetMs);
   o.scale = f.scale;
   validate(o);
   return o;
@@ -470,6 +494,8 @@ int run(int argc, char** argv) {
   benchCmd->add_option(
       "--lookahead", bench.lookahead,
       "pt's lookahead in bricks (default " + std::to_string(DEFAULT_LOOKAHEAD) + ")");
+  benchCmd->add_option("--budget-ms", bench.budgetMs,
+                       "frame-time budget (see render --budget-ms; default off)");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");
   benchCmd->add_option("--out", bench.out, "results JSON (default results.json)");
   benchCmd->add_option("--csv", bench.csv, "also a CSV file");

@@ -1,11 +1,11 @@
 #include "gvdp/base/parallel.h"
 
-#include <chrono>
-
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <string>
+
+#include "gvdp/base/clock.h"
 
 namespace gvdp::detail {
 
@@ -42,20 +42,14 @@ TaskObserver taskObserver() {
   return observer;
 }
 
-uint64_t steadyNanoseconds() {
-  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                   std::chrono::steady_clock::now().time_since_epoch())
-                                   .count());
-}
-
 // With an observer, a worker's share of a run (if it got any chunk) is reported as one task.
 void ThreadPool::drainRecorded(int worker) {
   TaskObserver o = observer;
   if (!o || kind_ == NO_RECORD) return drain(worker);
-  uint64_t start = steadyNanoseconds();
+  uint64_t start = clockNanoseconds();
   int64_t before = next_.load();
   drain(worker);
-  if (next_.load() > before) o(kind_, worker, start, steadyNanoseconds());
+  if (next_.load() > before) o(kind_, worker, start, clockNanoseconds());
 }
 
 void ThreadPool::workerLoop(int worker) {

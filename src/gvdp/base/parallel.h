@@ -52,7 +52,6 @@ class ThreadPool {
 using TaskObserver = void (*)(uint8_t kind, int worker, uint64_t startNs, uint64_t endNs);
 void setTaskObserver(TaskObserver observer);  // nullptr: off
 TaskObserver taskObserver();
-uint64_t steadyNanoseconds();
 constexpr uint8_t NO_RECORD = 255;  // a run whose tasks report themselves
 
 // fn(i) for every i in [0, n) on the global pool; `kind` is a TaskKind (profile/timeline.h).

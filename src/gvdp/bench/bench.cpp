@@ -26,6 +26,7 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   s.frames = o.warmup + o.frames;
   SchedulerOptions so{o.backend, k, o.poolBricks};
   so.lookahead = o.lookahead;
+  so.budgetMs = o.budgetMs;
   s.scheduler = resolvedOptions(so);
   return s;
 }
@@ -46,6 +47,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.movement = std::string(movementName(m));
   c.scheduler = std::string(schedulerName(k));
   uint64_t bricks = 0, unsampled = 0, samples = 0, lookups = 0, skips = 0;
+  std::vector<FrameStats> measured;
   for (int f = 0; f < s.frames; ++f) {
     auto t0 = std::chrono::steady_clock::now();
     FrameStats st = renderer->render(poseOf(s, f), image);
@@ -60,6 +62,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     lookups += st.cache.lookups;
     skips += st.cache.skips;
     c.unfinishedPixels += st.unfinishedPixels;
+    measured.push_back(st);
   }
   // The floor: the first measured frames again, from the cache the path has filled.
   std::vector<double> floor;
@@ -78,6 +81,9 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.samplesPerRay = static_cast<double>(samples) / rays;
   c.lookupsPerRay = static_cast<double>(lookups) / rays;
   c.skipsPerRay = static_cast<double>(skips) / rays;
+  BudgetStats b = budgetStats(measured, o.budgetMs, int64_t{s.width} * s.height);
+  c.withinBudget = static_cast<double>(b.framesWithin) / static_cast<double>(measured.size());
+  c.coarserPixels = b.coarserShare;
   c.memory = renderer->memory();
   for (const MemoryItem& item : c.memory) c.memoryBytes += item.bytes;
   return c;
@@ -111,6 +117,7 @@ BenchResults runBench(const BenchOptions& o,
   r.height = o.height;
   r.frames = o.frames;
   r.warmup = o.warmup;
+  r.budgetMs = o.budgetMs;
   int total = static_cast<int>(o.scenes.size() * o.movements.size() * o.schedulers.size());
   int done = 0;
   for (const std::string& scene : o.scenes)
@@ -125,7 +132,14 @@ BenchResults runBench(const BenchOptions& o,
                       c.scene.c_str(), c.movement.c_str(), c.scheduler.c_str(), c.avgFps, c.low1Fps,
                       c.bricksPerFrame, c.samplesPerRay, c.lookupsPerRay, c.skipsPerRay,
                       100.0 * c.overproduction);
-        progress(++done, total, line);
+        std::string text = line;
+        if (o.budgetMs >= 0.0) {
+          std::snprintf(line, sizeof line,
+                        "; %.0f%% of frames within %.1f ms, %.2f%% pixels coarser",
+                        100.0 * c.withinBudget, o.budgetMs, 100.0 * c.coarserPixels);
+          text += line;
+        }
+        progress(++done, total, text);
       }
   // Speed-up against sp in the same (scene, movement).
   for (BenchCell& c : r.cells)
@@ -163,6 +177,8 @@ std::string benchJson(const BenchResults& r) {
                      {"lookups_per_ray", c.lookupsPerRay},
                      {"skips_per_ray", c.skipsPerRay},
                      {"overproduction", c.overproduction},
+                     {"within_budget", c.withinBudget},
+                     {"coarser_pixels", c.coarserPixels},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
@@ -175,9 +191,9 @@ std::string benchJson(const BenchResults& r) {
                      {"height", p.height},
                      {"median_ms", p.medianMs},
                      {"avg_fps", p.avgFps}});
-  return nlohmann::json{{"device", r.device}, {"backend", r.backend}, {"width", r.width},
-                        {"height", r.height}, {"frames", r.frames},   {"warmup", r.warmup},
-                        {"cells", cells},     {"scale", scale}}
+  return nlohmann::json{{"device", r.device}, {"backend", r.backend}, {"budget_ms", r.budgetMs},
+                        {"width", r.width},   {"height", r.height},   {"frames", r.frames},
+                        {"warmup", r.warmup}, {"cells", cells},       {"scale", scale}}
       .dump(1);
 }
 
@@ -185,12 +201,13 @@ std::string benchCsv(const BenchResults& r) {
   std::ostringstream s;
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
        "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
-       "skips_per_ray,overproduction\n";
+       "skips_per_ray,overproduction,within_budget,coarser_pixels\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
       << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << ',' << c.samplesPerRay
-      << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << '\n';
+      << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << ','
+      << c.withinBudget << ',' << c.coarserPixels << '\n';
   return s.str();
 }
 

@@ -20,6 +20,7 @@ struct BenchOptions {
   int frames = 32, warmup = 6, floorFrames = 8;
   uint32_t poolBricks = 0;
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt's
+  double budgetMs = NO_BUDGET;             // every cell's frame-time budget
   bool scale = false;  // frame time against resolution for dp on the first scene
 };
 
@@ -30,6 +31,8 @@ struct BenchCell {
   double samplesPerRay, lookupsPerRay, skipsPerRay;
   // Bricks produced in a measured frame that no ray of it sampled, over the bricks produced.
   double overproduction;
+  // With a budget: the share of measured frames within it, and of their pixels shown coarser.
+  double withinBudget = 0, coarserPixels = 0;
   int64_t unfinishedPixels;
   uint64_t memoryBytes;
   std::vector<double> frameMs;      // CUDA events (GPU) or wall clock (CPU), per measured frame
@@ -45,6 +48,7 @@ struct BenchScalePoint {
 struct BenchResults {
   std::string device, backend;
   int width, height, frames, warmup;
+  double budgetMs;  // NO_BUDGET: exact frames
   std::vector<BenchCell> cells;
   std::vector<BenchScalePoint> scale;
 };

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <vector>
 
+#include "gvdp/sched/scheduler.h"
+
 namespace gvdp::detail {
 
 struct FrameTimeStats {
@@ -26,6 +28,27 @@ inline FrameTimeStats frameTimeStats(std::vector<double> ms) {
   // Nearest-rank percentile.
   s.p99Ms = ms[std::min(n - 1, static_cast<size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1)];
   return s;
+}
+
+// A budgeted run (--budget-ms): frames whose time was within the budget, and the share of all
+// their pixels that showed a coarser level for a brick that was not ready.
+struct BudgetStats {
+  size_t framesWithin = 0;
+  double coarserShare = 0;
+};
+
+inline BudgetStats budgetStats(const std::vector<FrameStats>& frames, double budgetMs,
+                               int64_t pixels) {
+  BudgetStats b;
+  uint64_t coarser = 0;
+  for (const FrameStats& f : frames) {
+    b.framesWithin += f.ms <= budgetMs ? 1u : 0u;
+    coarser += f.cache.coarser;
+  }
+  if (!frames.empty())
+    b.coarserShare = static_cast<double>(coarser) /
+                     (static_cast<double>(pixels) * static_cast<double>(frames.size()));
+  return b;
 }
 
 }  // namespace gvdp::detail

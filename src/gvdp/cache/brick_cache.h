@@ -12,6 +12,8 @@
 //                                               (lastUsedFrame of the timestamps)
 //   countUnsampled(timestamps, n, frame, count) *count += slots produced in `frame` and never
 //                                               sampled, their marks cleared (takeUnsampled)
+//   setDeadline(uint64_t* at, uint64_t ns)      *at = the backend's clockNanoseconds() + ns,
+//                                               ordered before the frame's rays
 //   unmapSlots(view, slots, n, timeline)        the head of that list, unmapped (cache_ops.h)
 //   lruBytes(), LRU_NAME                        what the sort holds, for the memory report
 #pragma once
@@ -47,13 +49,23 @@ class BrickCache {
   BrickCache(const BrickCache&) = delete;
   BrickCache& operator=(const BrickCache&) = delete;
 
-  // Frame start: move the clipmap windows (reset the slabs left, or everything when the
-  // geometry changed), stamp the frame, size the request queue, refill the free slot list.
+  // A frame-time budget from now on (ns from each frame's start; negative: none, the default).
+  // Past it, a ray whose brick is not ready shows the nearest resident coarser level instead of
+  // waiting (CachedAccess::find); the brick is still produced, for the next frames.
+  void setBudget(int64_t ns) { budgetNs_ = ns; }
+  bool budgeted() const { return budgetNs_ >= 0; }
+
+  // Frame start: the deadline (budgeted), move the clipmap windows (reset the slabs left, or
+  // everything when the geometry changed), stamp the frame, size the request queue, refill the
+  // free slot list.
   void beginFrame(const FrameSetup& frame) {
+    ops_.zero(counters_.data(), COUNTER_COUNT);
+    if (budgeted())
+      ops_.setDeadline(reinterpret_cast<uint64_t*>(counters_.data() + COUNTER_DEADLINE),
+                       static_cast<uint64_t>(budgetNs_));
     ClipmapTracker::Update u = tracker_.next(frame);
     clipmap_ = u.clipmap;
     timeline_ = frame.timeline;
-    ops_.zero(counters_.data(), COUNTER_COUNT);
     degraded_ = false;
     ++frame_;
     if (u.fullReset) {
@@ -97,6 +109,7 @@ class BrickCache {
     v.counters = counters_.data();
     v.frame = frame_;
     v.degraded = degraded_ ? 1u : 0u;
+    v.budgeted = budgeted() ? 1u : 0u;
     return v;
   }
   BrickPool pool() { return BrickPool{texels_.data(), occupancy_.data()}; }
@@ -151,6 +164,7 @@ class BrickCache {
   const uint32_t* freeSlots_ = nullptr;
   uint32_t freeCount_ = 0, frame_ = 0, refills_ = 0;
   uint64_t resident_ = 0;
+  int64_t budgetNs_ = -1;
   bool degraded_ = false;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "gvdp/base/clock.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/profile/timeline.h"
@@ -45,6 +46,10 @@ const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, ui
 void HostCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,
                                   uint32_t* count) {
   for (uint32_t s = 0; s < n; ++s) *count += takeUnsampled(&timestamps[s], frame) ? 1u : 0u;
+}
+
+void HostCacheOps::setDeadline(uint64_t* at, uint64_t ns) {
+  *at = clockNanoseconds() + ns;
 }
 
 void HostCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,

@@ -56,6 +56,11 @@ void CudaCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t fra
   GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
+void CudaCacheOps::setDeadline(uint64_t* at, uint64_t ns) const {
+  launchSetDeadline(at, ns, stream_);
+  GVDP_CUDA_CHECK(cudaGetLastError());
+}
+
 size_t CudaCacheOps::lruBytes() const {
   return keysIn_.bytes() + keysOut_.bytes() + valuesIn_.bytes() + valuesOut_.bytes() +
          temp_.bytes();

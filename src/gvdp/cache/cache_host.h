@@ -18,8 +18,9 @@ struct CacheStats {
   uint64_t resident = 0;   // slots holding a brick at the end of the frame
   uint64_t unsampled = 0;  // bricks produced in the frame that no ray sampled (over-production)
   uint32_t refills = 0;    // free-list refills after the frame-start one
-  // What the rays did (MarchCounter): samples, brick lookups, lookups that skipped empty space.
-  uint64_t samples = 0, lookups = 0, skips = 0;
+  // What the rays did (MarchCounter): samples, brick lookups, lookups that skipped empty space,
+  // rays (pixels) that showed a coarser level for a brick that was not ready.
+  uint64_t samples = 0, lookups = 0, skips = 0, coarser = 0;
 };
 
 struct MemoryItem {
@@ -44,6 +45,7 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.samples = march[MARCH_SAMPLES];
   s.lookups = march[MARCH_LOOKUPS];
   s.skips = march[MARCH_SKIPS];
+  s.coarser = march[MARCH_COARSER];
   return s;
 }
 

@@ -1,6 +1,8 @@
-// CUDA kernels of the cache maintenance: clipmap slab reset, LRU sort (CUB), unmapping.
+// CUDA kernels of the cache maintenance: clipmap slab reset, LRU sort (CUB), unmapping, the
+// frame's deadline.
 #include <cub/device/device_radix_sort.cuh>
 
+#include "gvdp/base/clock.h"
 #include "gvdp/cache/cache_kernels.h"
 #include "gvdp/profile/parallel_for.cuh"
 
@@ -52,6 +54,11 @@ void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint
                   [=] __device__(uint32_t i) {
                     if (takeUnsampled(&timestamps[i], frame)) atomicAdd(count, 1u);
                   });
+}
+
+void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream) {
+  parallelForCuda("cache: deadline", stream, 1, TimelineView{}, TaskKind::Cache,
+                  [=] __device__(uint32_t) { *at = clockNanoseconds() + ns; });
 }
 
 void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,

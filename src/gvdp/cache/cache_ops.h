@@ -58,11 +58,15 @@ GVDP_HD GVDP_INLINE void unmapSlot(const CacheView& c, uint32_t slot) {
   c.inverse[slot].level = NO_LEVEL;
 }
 
-// Queues brick g of `level` for production; the caller won the MISSING -> IN_PRODUCTION CAS.
-GVDP_HD GVDP_INLINE void requestBrick(const CacheView& c, int level, Vec3i g) {
+// Queues brick g of `level` for production; the caller won the MISSING -> IN_PRODUCTION CAS on
+// `entry`. The queue holds a request per ray of a pass; claims no ray waits for (past a frame's
+// deadline) may overflow it: the brick is then MISSING again, for a later pass or frame to claim.
+GVDP_HD GVDP_INLINE void requestBrick(const CacheView& c, int level, Vec3i g, uint32_t* entry) {
   uint32_t i = atomicAdd32(&c.counters[COUNTER_REQUESTS], 1u);
-  // The queue holds one request per ray of a pass; it cannot overflow unless misconfigured.
-  if (i < c.requestCapacity) c.requests[i] = {g, level};
+  if (i < c.requestCapacity)
+    c.requests[i] = {g, level};
+  else
+    storeRelease32(entry, ENTRY_MISSING);
 }
 
 // Algorithm 2, thread 0's part: a slot from the free slot list, or MAX_SLOTS when exhausted.

@@ -11,8 +11,16 @@
 namespace gvdp::detail {
 
 // What rays did with the cache in a frame (CacheStats): samples composited, brick lookups (one
-// per brick entered: a resident brick's samples share one) and lookups that skipped empty space.
-enum MarchCounter : int { MARCH_SAMPLES, MARCH_LOOKUPS, MARCH_SKIPS, MARCH_COUNTER_COUNT };
+// per brick entered: a resident brick's samples share one), lookups that skipped empty space, and
+// rays that showed a coarser level (or nothing) for a brick that was not ready: past the frame's
+// budget, or in a degraded frame.
+enum MarchCounter : int {
+  MARCH_SAMPLES,
+  MARCH_LOOKUPS,
+  MARCH_SKIPS,
+  MARCH_COARSER,
+  MARCH_COUNTER_COUNT
+};
 
 enum CacheCounter : int {
   COUNTER_FREE_NEXT,  // next index into the free slot list (may run past freeCount)
@@ -23,7 +31,8 @@ enum CacheCounter : int {
   COUNTER_EVICTED,    // resident bricks unmapped (LRU or leaving the clipmap)
   COUNTER_UNSAMPLED,  // at the frame's end: bricks produced in it that no ray sampled
   COUNTER_MARCH = 8,  // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
-  COUNTER_COUNT = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT
+  COUNTER_DEADLINE = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT,  // 64 bits: the frame's (budgeted)
+  COUNTER_COUNT = COUNTER_DEADLINE + 2
 };
 static_assert(COUNTER_MARCH % 2 == 0, "the march's 64-bit counters must be 8-byte aligned");
 
@@ -56,10 +65,16 @@ struct CacheView {
   uint32_t frame;             // current frame stamp (>= 1)
   uint32_t degraded;          // nonzero: no production; rays fall back to coarser levels
   uint32_t degradeOnFailure;  // nonzero: a failed production degrades the frame (dp, pt)
+  uint32_t budgeted;          // nonzero: the frame has a deadline (a time budget)
   float voxelSize0;
 
   GVDP_HD uint64_t* marchCounters() const {
     return reinterpret_cast<uint64_t*>(counters + COUNTER_MARCH);
+  }
+  // A budgeted frame's deadline on clockNanoseconds() of the side the frame runs on, written by
+  // the frame's start (BrickCache::beginFrame) before any ray of it.
+  GVDP_HD uint64_t* deadline() const {
+    return reinterpret_cast<uint64_t*>(counters + COUNTER_DEADLINE);
   }
 };
 

@@ -3,10 +3,13 @@
 // names (brick_key.h: emptyEntry), a missing one under an EMPTY coarser ancestor with that
 // ancestor's; a MISSING brick is claimed with a CAS (the winner queues its production) and the ray
 // stops, as on IN_PRODUCTION. In a degraded frame (no free slot left) nothing is produced: the
-// ray samples the nearest resident coarser level, or passes through.
+// ray samples the nearest resident coarser level, or passes through. Past a budgeted frame's
+// deadline (BrickCache::setBudget) the ray does not stop either: it shows the nearest resident
+// coarser level, and a MISSING brick is still claimed, without waiting, for the next frames.
 #pragma once
 
 #include "gvdp/base/atomics.h"
+#include "gvdp/base/clock.h"
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/march.h"
@@ -21,20 +24,24 @@ GVDP_HD GVDP_INLINE bool claimBrick(uint32_t* entry) {
 // sp's answer to a MISSING brick: claim it and queue it for the next production pass.
 struct QueueRequest {
   GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
-    if (claimBrick(entry)) requestBrick(cache, level, g);
+    if (claimBrick(entry)) requestBrick(cache, level, g, entry);
+  }
+  GVDP_HD void ahead(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
+    (*this)(cache, level, g, entry);
   }
 };
 
 // Adds a ray's march counts to the frame's (MarchCounter): on the GPU one atomic per counter
 // and warp (the lanes that get here together), so counting costs the frame nothing visible.
 GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples, uint32_t lookups,
-                                        uint32_t skips) {
+                                        uint32_t skips, uint32_t coarser) {
   uint64_t* c = cache.marchCounters();
 #if GVDP_IS_GPU_CODE
   unsigned mask = __activemask();
   samples = __reduce_add_sync(mask, samples);
   lookups = __reduce_add_sync(mask, lookups);
   skips = __reduce_add_sync(mask, skips);
+  coarser = __reduce_add_sync(mask, coarser);
   unsigned lane;
   asm("mov.u32 %0, %%laneid;" : "=r"(lane));
   if (lane != static_cast<unsigned>(__ffs(static_cast<int>(mask)) - 1)) return;
@@ -42,13 +49,16 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
   atomicAdd64(&c[MARCH_SAMPLES], samples);
   atomicAdd64(&c[MARCH_LOOKUPS], lookups);
   atomicAdd64(&c[MARCH_SKIPS], skips);
+  if (coarser) atomicAdd64(&c[MARCH_COARSER], coarser);
 }
 
 // Pool provides: Vec4f sample<READS>(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
 // coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates, and
 // uint64_t loadOccupancy<READS>(slot) (render/brick_pool.h).
 // OnMiss(cache, level, globalBrick, entry) runs when the entry was MISSING: it claims the brick
-// with a CAS from MISSING (one thread wins) and the winner starts its production.
+// with a CAS from MISSING (one thread wins) and the winner starts its production; the ray waits
+// for it. OnMiss::ahead(cache, level, globalBrick, entry) claims a brick no ray will wait for (the
+// ray went on past the frame's deadline); it may decline (the brick stays MISSING).
 //
 // READS says whether bricks may be published while the march's kernel runs (docs/DESIGN.md,
 // "Memory model"). Coherent (dp, pt): an entry is read with an acquire load, which makes the
@@ -71,6 +81,7 @@ struct CachedAccess {
   OnMiss onMiss{};
   uint32_t* stopEntry = nullptr;                 // the entry the ray stopped on (dp re-reads it)
   uint32_t samples = 0, lookups = 0, skips = 0;  // this march's (addCounts after it)
+  uint32_t coarser = 0;  // 1 once a coarser level stood in for a brick that was not ready
 
   // An ancestor's entry; MISSING outside its window (never read: it would alias another brick).
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
@@ -111,9 +122,21 @@ struct CachedAccess {
            (cache.degradeOnFailure && loadRelaxed32(&cache.counters[COUNTER_FAILED]));
   }
 
+  // Past a budgeted frame's deadline: a brick that is not ready is no longer waited for. Read
+  // only where a ray would stop; the time only grows, so a ray that stood in once never stops
+  // again in the frame (and counts once in MARCH_COARSER).
+  GVDP_HD bool late() const {
+    return cache.budgeted && clockNanoseconds() >= *cache.deadline();
+  }
+
+  GVDP_HD BrickLookup showCoarser(const BrickLookup& b) {
+    coarser = 1;
+    return b;
+  }
+
   // The counts of the march so far into the frame's; once per march.
   GVDP_HD void addCounts() const {
-    addMarchCounts(cache, samples, lookups, skips);
+    addMarchCounts(cache, samples, lookups, skips, coarser);
   }
 
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
@@ -138,9 +161,14 @@ struct CachedAccess {
       a = halfFloor(a);
       uint32_t ea = entryAt(up, a);
       if (isEmptyEntry(ea)) return empty(up, a, ea);
-      if (isSlot(ea) && degraded()) return resident(ea, up, a);
+      if (isSlot(ea) && degraded()) return showCoarser(resident(ea, up, a));
     }
-    if (degraded()) return {BrickState::Empty, 0u, level, brick};  // nothing to show
+    if (degraded()) return showCoarser({BrickState::Empty, 0u, level, brick});  // nothing
+    if (late()) {  // produced for the next frames, stood in for now
+      if (e == ENTRY_MISSING)
+        onMiss.ahead(cache, level, cache.clipmap.globalBrick(level, brick), entry);
+      return showCoarser(standIn(level, brick));
+    }
     if (e == ENTRY_MISSING) onMiss(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};

@@ -22,6 +22,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   if (used.poolBricks) j["pool_bricks"] = used.poolBricks;
   if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;
   if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
+  if (used.budgetMs >= 0.0) j["budget_ms"] = used.budgetMs;
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
   nlohmann::json mem = nlohmann::json::object();
   for (const MemoryItem& m : memory) mem[m.name] = m.bytes;
@@ -41,6 +42,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"samples", f.cache.samples},
                     {"brick_lookups", f.cache.lookups},
                     {"empty_skips", f.cache.skips},
+                    {"coarser_pixels", f.cache.coarser},
                     {"unfinished_pixels", f.unfinishedPixels},
                     {"launches", f.launches},
                     {"launch_failures", f.launchFailures},

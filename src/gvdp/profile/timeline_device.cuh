@@ -6,15 +6,10 @@
 // per thread.
 #pragma once
 
+#include "gvdp/base/clock.h"
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp::detail {
-
-__device__ inline uint64_t globalTimer() {
-  uint64_t t;
-  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
-  return t;
-}
 
 __device__ inline uint32_t smId() {
   uint32_t id;
@@ -36,11 +31,11 @@ class BlockTimer {
       span.sm = smId();
     }
     __syncthreads();
-    atomicMin(&span.start, static_cast<unsigned long long>(globalTimer()));
+    atomicMin(&span.start, static_cast<unsigned long long>(clockNanoseconds()));
   }
   __device__ ~BlockTimer() {
     if (!on_) return;
-    atomicMax(&span_->end, static_cast<unsigned long long>(globalTimer()));
+    atomicMax(&span_->end, static_cast<unsigned long long>(clockNanoseconds()));
     __threadfence_block();
     unsigned threads = blockDim.x * blockDim.y * blockDim.z;
     if (atomicAdd(&span_->left, 1u) + 1 == threads) {

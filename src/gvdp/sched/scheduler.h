@@ -48,6 +48,10 @@ struct FrameStats {
 constexpr uint32_t DEFAULT_LOOKAHEAD = 0;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
 
+// A frame-time budget (BrickCache::setBudget): NO_BUDGET (exact frames) by default.
+constexpr double NO_BUDGET = -1.0;
+constexpr double MAX_BUDGET_MS = 60000.0;
+
 struct SchedulerOptions {
   Backend backend = Backend::Cpu;
   SchedulerKind kind = SchedulerKind::Sp;
@@ -55,7 +59,13 @@ struct SchedulerOptions {
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt: missing bricks a stopped ray claims ahead
+  double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
+
+// The budget in nanoseconds for BrickCache::setBudget (negative: none).
+inline int64_t budgetNsOf(const SchedulerOptions& o) {
+  return o.budgetMs < 0.0 ? -1 : static_cast<int64_t>(o.budgetMs * 1e6 + 0.5);
+}
 
 // Default pool sizes: about 2 GB on the GPU (the paper), 128 MB on the CPU.
 constexpr uint32_t DEFAULT_POOL_BRICKS_CUDA = 500000;
@@ -84,6 +94,7 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.poolBricks = o.kind == SchedulerKind::Direct ? 0 : poolBricksOf(o);
   o.pendingLaunches = o.kind == SchedulerKind::Dp ? pendingLaunchesOf(o) : 0;
   o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
+  o.budgetMs = o.kind == SchedulerKind::Direct ? NO_BUDGET : o.budgetMs;
   return o;
 }
 

@@ -78,6 +78,9 @@ struct LaunchProduction {
   GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
     if (claimBrick(entry)) launcher->produce(BrickKey{g, level}, entry);
   }
+  GVDP_HD void ahead(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
+    (*this)(cache, level, g, entry);
+  }
 };
 
 // Algorithm 1 with the lock protocol, for one pixel of a render task.

@@ -1,6 +1,7 @@
 #include <atomic>
 #include <vector>
 
+#include "gvdp/base/clock.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
@@ -79,7 +80,7 @@ class DpCpu final : public SpFrameCpu {
         [&](int64_t, int64_t, int worker) {
           DpTask task;
           while (queue.pop(task)) {
-            uint64_t start = steadyNanoseconds();
+            uint64_t start = clockNanoseconds();
             if (task.produce) {
               producer().produceBrick(ctx.cache, pool, task.key);
               launcher.relaunch(brickScreenRect(f, ctx.cache.clipmap, task.key));
@@ -90,7 +91,7 @@ class DpCpu final : public SpFrameCpu {
             }
             if (TaskObserver o = taskObserver())  // one timeline record per task
               o(static_cast<uint8_t>(task.produce ? TaskKind::Produce : TaskKind::Render), worker,
-                start, steadyNanoseconds());
+                start, clockNanoseconds());
             queue.finished();
           }
         },

@@ -77,7 +77,8 @@ class DpCuda final : public SpFrameCuda {
   }
 
   // Rays the device-side schedule left unfinished (refused launches, deferred productions) are
-  // finished by the sp loop; with the race-free relaunch there are none otherwise.
+  // finished by the sp loop; with the race-free relaunch there are none otherwise. In a budgeted
+  // frame, productions deferred without a waiting ray may be queued: the loop produces them.
   void sweep(const FrameSetup& f, FrameStats& stats) {
     NvtxRange range("dp sweep");
     fillDevice(buffers_.counters.data(), 0, 4, stream());
@@ -86,7 +87,7 @@ class DpCuda final : public SpFrameCuda {
     uint32_t unfinished = 0;
     readDevice(&unfinished, buffers_.counters.data(), 4, stream());
     stats.sweptPixels = unfinished;
-    if (unfinished)
+    if (unfinished || cache_.budgeted())
       runSpLoopCuda(f, cudaProducer(), cache_, buffers_, unfinished, false, stats, stream());
   }
 

@@ -32,7 +32,7 @@ struct GpuLauncher {
 
   __device__ void produce(const BrickKey& key, uint32_t* entry) const {
     if (depth + 1 > DP_MAX_DEPTH) {
-      requestBrick(ctx->cache, key.level, key.brick);
+      requestBrick(ctx->cache, key.level, key.brick, entry);
       atomicAdd(&ctx->counters[DP_DEFERRED], 1u);
       return;
     }

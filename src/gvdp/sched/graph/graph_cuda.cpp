@@ -29,7 +29,9 @@ class GraphCuda final : public SpFrameCuda {
       readDevice(&loop, loop_.data(), sizeof loop, stream());
     } while (driver_ == GraphDriver::Host && !loop.stop);
     stats.passes = static_cast<int>(loop.passes);
-    if (loop.exit != GRAPH_DONE) finishOnHost(f, loop, stats);
+    // A budgeted frame's last claims (no ray stopped on them) are left queued: the host
+    // produces them.
+    if (loop.exit != GRAPH_DONE || cache_.budgeted()) finishOnHost(f, loop, stats);
     stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }
 

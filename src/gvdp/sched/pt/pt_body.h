@@ -20,8 +20,9 @@
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
 // so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
 // ray parked on it or about to be, so at most pixels + workers of those ids are out at once, and
-// a ray that needs one always gets one (it waits only for a task in flight to finish); the
-// lookahead's ids are a separate PT_LOOKAHEAD_IDS. `tasks` holds at most all ids.
+// a ray that needs one always gets one (it waits only for a task in flight to finish). Claims
+// no ray waits for (the lookahead's, and those past a budgeted frame's deadline) take ids from a
+// separate ring of PT_LOOKAHEAD_IDS, only when one is ready. `tasks` holds at most all ids.
 #pragma once
 
 #include "gvdp/cache/lookahead.h"
@@ -199,24 +200,37 @@ GVDP_HD GVDP_INLINE bool startTask(const PtContext& ctx, uint32_t id, int level,
   return false;
 }
 
+// A claim no ray waits for (a lookahead's, or one past the frame's deadline): an id from
+// `lookaheadIds` if one is ready (one attempt), then startTask; without one the brick stays
+// MISSING. True when this claim started the task.
+GVDP_HD GVDP_INLINE bool startTaskAhead(const PtContext& ctx, int level, Vec3i g, uint32_t* entry) {
+  uint32_t position = 0;
+  if (ringClaim(ctx.lookaheadIds, 1, &position) == 0) return false;
+  uint32_t id = ctx.firstLookaheadId + ringTake(ctx.lookaheadIds, position);
+  return startTask(ctx, id, level, g, entry);
+}
+
 // pt's answer to a MISSING brick a ray stops on: a task id from `freeIds`, waited for (one always
-// comes: the capacity argument above), then startTask.
+// comes: the capacity argument above), then startTask. Past the frame's deadline: startTaskAhead
+// (those claims are no ray's, and could outnumber `freeIds`).
 struct StartProduction {
   const PtContext* ctx;
   GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
     startTask(*ctx, ringTake(ctx->freeIds, atomicAdd32(ctx->freeIds.head, 1u)), level, g, entry);
   }
+  GVDP_HD void ahead(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
+    startTaskAhead(*ctx, level, g, entry);
+  }
 };
 
-// The lookahead's answer to a MISSING brick: an id from `lookaheadIds` if one is ready (one
-// attempt), then startTask; without one the brick stays MISSING.
+// The lookahead's answer to a MISSING brick: startTaskAhead, counted.
 struct StartLookahead {
   const PtContext* ctx;
   GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
-    uint32_t position = 0;
-    if (ringClaim(ctx->lookaheadIds, 1, &position) == 0) return;
-    uint32_t id = ctx->firstLookaheadId + ringTake(ctx->lookaheadIds, position);
-    if (startTask(*ctx, id, level, g, entry)) atomicAdd32(ctx->counter(PT_LOOKAHEAD), 1u);
+    if (startTaskAhead(*ctx, level, g, entry)) atomicAdd32(ctx->counter(PT_LOOKAHEAD), 1u);
+  }
+  GVDP_HD void ahead(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
+    (*this)(cache, level, g, entry);
   }
 };
 

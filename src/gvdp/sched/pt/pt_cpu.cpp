@@ -1,5 +1,6 @@
 #include <vector>
 
+#include "gvdp/base/clock.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/profile/timeline.h"
 #include "gvdp/render/brick_pool.h"
@@ -115,10 +116,10 @@ class PtCpu final : public SpFrameCpu {
     }
     template <class Task>
     void timed(TaskKind kind, Task task) const {
-      uint64_t start = steadyNanoseconds();
+      uint64_t start = clockNanoseconds();
       task();
       if (TaskObserver o = taskObserver())
-        o(static_cast<uint8_t>(kind), worker, start, steadyNanoseconds());
+        o(static_cast<uint8_t>(kind), worker, start, clockNanoseconds());
     }
   };
 

@@ -31,11 +31,11 @@ struct WarpSpan {
     if (open && k == kind) return;
     close();
     kind = k;
-    start = globalTimer();
+    start = clockNanoseconds();
     open = true;
   }
   __device__ void taskDone() {
-    if (on) end = globalTimer();
+    if (on) end = clockNanoseconds();
   }
   __device__ void close() {
     if (!on || !open) return;

@@ -80,7 +80,9 @@ int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out) {
 }
 
 SpFrameCpu::SpFrameCpu(const SchedulerOptions& o, ProducerKernelsPtr producer)
-    : Scheduler(Backend::Cpu, std::move(producer)), cache_(poolBricksOf(o)) {}
+    : Scheduler(Backend::Cpu, std::move(producer)), cache_(poolBricksOf(o)) {
+  cache_.setBudget(budgetNsOf(o));
+}
 
 MemoryReport SpFrameCpu::memory() const {
   MemoryReport m = cache_.memory();

@@ -37,18 +37,23 @@ void produceQueued(B& backend) {
 }
 
 // Runs passes until no ray is left. With `tiled`, the first pass covers every pixel from a fresh
-// state; otherwise it resumes `liveCount` listed rays. Bricks already queued are produced before
-// the first pass. Adds to stats.passes; past SP_MAX_PASSES the frame is marked degraded.
+// state; otherwise it resumes `liveCount` listed rays (none: only the queued bricks are
+// produced). Bricks already queued are produced before the first pass. Adds to stats.passes;
+// past SP_MAX_PASSES the frame is marked degraded.
 template <class B>
 void runSpLoop(B& backend, uint32_t liveCount, bool tiled, FrameStats& stats) {
   produceQueued(backend);
+  if (liveCount == 0 && !tiled) return;
   for (int pass = 0;; ++pass) {
     liveCount = backend.renderPass(pass == 0 && tiled, liveCount);
     ++stats.passes;
-    if (liveCount == 0) return;
+    if (liveCount == 0) break;
     produceQueued(backend);
     if (stats.passes >= SP_MAX_PASSES) backend.cache().setDegraded(true);
   }
+  // Past a budgeted frame's deadline rays claim bricks and go on: those are produced now, for the
+  // next frames. (Without a budget every claim has a stopped ray: nothing is left queued.)
+  if (backend.cache().budgeted()) produceQueued(backend);
 }
 
 }  // namespace gvdp::detail

@@ -38,7 +38,9 @@ void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, Bri
 class SpFrameCuda : public Scheduler {
  public:
   SpFrameCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
-      : Scheduler(Backend::Cuda, std::move(producer)), cache_(poolBricksOf(o), stream()) {}
+      : Scheduler(Backend::Cuda, std::move(producer)), cache_(poolBricksOf(o), stream()) {
+    cache_.setBudget(budgetNsOf(o));
+  }
   MemoryReport memory() const override;
   const uint32_t* deviceImage() const override { return buffers_.image.data(); }
 
