@@ -78,7 +78,7 @@ class DpCuda final : public SpFrameCuda {
 
   // Rays the device-side schedule left unfinished (refused launches, deferred productions) are
   // finished by the sp loop; with the race-free relaunch there are none otherwise. In a budgeted
-  // frame, productions deferred without a waiting ray may be queued: the loop produces them.
+  // frame, the claims past its deadline are queued (LaunchProduction): the loop produces them.
   void sweep(const FrameSetup& f, FrameStats& stats) {
     NvtxRange range("dp sweep");
     fillDevice(buffers_.counters.data(), 0, 4, stream());
