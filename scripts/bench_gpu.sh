@@ -1,12 +1,11 @@
-#!/ usr / bin / env bash
-#On a GPU machine, with binaries in carry / : the full Table - 1 benchmark(all scenes, movements,
-#sp, dp, pt and graph) at 1500x1000, its plots, the speed - ups cell by cell, 1000 pt and graph
-#frames at 320x200(unfinished pixels), the timelines of walkthrough frame 12(sp, dp, pt;
-#perlin and random - spheres) and the timeline's overhead on pt. Extra arguments go to the
-#benchmark(--scale adds dp's resolution study). Writes to $OUT (or out/bench): results.json,
-#results.md, results.csv, frame_time.png, speedup.png, summary.txt(speed - ups, unfinished
-#pixels, timeline statistics and overhead), timeline_pt_perlin.png, \
-    timeline_pt_random - spheres.png.
+#!/usr/bin/env bash
+# On a GPU machine, with binaries in carry/: the full Table-1 benchmark (all scenes, movements,
+# sp, dp, pt and graph) at 1500x1000, its plots, the speed-ups cell by cell, 1000 pt and graph
+# frames at 320x200 (unfinished pixels), the timelines of walkthrough frame 12 (sp, dp, pt;
+# perlin and random-spheres) and the timeline's overhead on pt. Extra arguments go to the
+# benchmark (--scale adds dp's resolution study). Writes to $OUT (or out/bench): results.json,
+# results.md, results.csv, frame_time.png, speedup.png, summary.txt (speed-ups, unfinished
+# pixels, timeline statistics and overhead), timeline_pt_perlin.png, timeline_pt_random-spheres.png.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out/bench}"
@@ -25,18 +24,14 @@ for k in ('pt', 'graph'):
     print('%s 320x200: %d frames, %d unfinished pixels' % (k, sum(len(c['frame_ms']) for c in cells),
           sum(c['unfinished_pixels'] for c in cells)))
 " | tee -a "$out/summary.txt"
-for sched in sp dp pt;
-do
-  for
-    scene in perlin random - spheres;
-do
+for sched in sp dp pt; do
+  for scene in perlin random-spheres; do
     ./carry/gvdp timeline --backend cuda --scheduler "$sched" --scene "$scene" --frame 12 \
       --out "/tmp/timeline_${sched}_$scene.png" | tee -a "$out/summary.txt"
   done
 done
 cp /tmp/timeline_pt_perlin.png /tmp/timeline_pt_random-spheres.png "$out/"
-for mode in off on;
-do
+for mode in off on; do
   flag=""
   [ "$mode" = on ] && flag="--timeline /tmp/tl_pt"
   ./carry/gvdp render --backend cuda --scheduler pt --scene perlin --frames 24 --out /tmp/ov_pt \

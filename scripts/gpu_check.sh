@@ -1,138 +1,112 @@
-#!/ usr / bin / env bash
-#On a machine with a GPU, with the binaries built elsewhere and carried in carry / (carry / gvdp,
-#carry / gvdp_tests from preset default; carry / nocdp / gvdp from preset nocdp):
-# 1. every test(GPU ones included);
-# 2. compute - sanitizer's four tools on every scheduler, each with a large pool (forest
-#walkthrough, 20000 bricks), a tiny one(random - spheres backward, 64 bricks : refills and
-#degraded frames) and the large one with-- budget - ms 0("late" : every claim past the
-#deadline, rays never waiting).memcheck runs on the default build; \
-    initcheck, racecheck and synccheck
-#on the nocdp build : with CDP in the binary they instrument no kernel("CUDA Dynamic
-#Parallelism is not supported by the selected tool "), and initcheck then reports every
-#download as uninitialised since it never saw the kernels' writes;
-# 3. unless frames is 0, a 1500x1000 walkthrough of each scene per scheduler(montages).
-#Prints one line per tool, scheduler and pool; exits 1 on any failed test or any tool error.
-#Writes to $OUT(or out / gpu_check) : device.txt, tests.log, sanitizer.log, renders.log,
-#montage_ < scheduler>.png.
-#Usage : scripts / gpu_check.sh[frames][schedulers...](default : 0, all five schedulers)
-set - uo pipefail cd "$(dirname " $0 ")/.." out =
-    "${OUT:-out/gpu_check}" mkdir - p "$out" frames =
-        "${1:-0}" shift || true schedulers = ("${@:-sp}")[$ # - eq 0]&& schedulers =
-            (direct sp dp pt graph) export GVDP_BIN =
-                "$PWD/carry/gvdp" {nvidia - smi-- query - gpu = name, memory.total,
-                                   driver_version-- format = csv,
-                                   noheader compute - sanitizer-- version | tail - n 1} |
-                tee "$out/device.txt" status =
-                    0
+#!/usr/bin/env bash
+# On a machine with a GPU, with the binaries built elsewhere and carried in carry/ (carry/gvdp,
+# carry/gvdp_tests from preset default; carry/nocdp/gvdp from preset nocdp):
+#   1. every test (GPU ones included);
+#   2. compute-sanitizer's four tools on every scheduler, each with a large pool (forest
+#      walkthrough, 20000 bricks), a tiny one (random-spheres backward, 64 bricks: refills and
+#      degraded frames) and the large one with --budget-ms 0 ("late": every claim past the
+#      deadline, rays never waiting). memcheck runs on the default build; initcheck, racecheck and synccheck
+#      on the nocdp build: with CDP in the binary they instrument no kernel ("CUDA Dynamic
+#      Parallelism is not supported by the selected tool"), and initcheck then reports every
+#      download as uninitialised since it never saw the kernels' writes;
+#   3. unless frames is 0, a 1500x1000 walkthrough of each scene per scheduler (montages).
+# Prints one line per tool, scheduler and pool; exits 1 on any failed test or any tool error.
+# Writes to $OUT (or out/gpu_check): device.txt, tests.log, sanitizer.log, renders.log,
+# montage_<scheduler>.png.
+# Usage: scripts/gpu_check.sh [frames] [schedulers...]   (default: 0, all five schedulers)
+set -uo pipefail
+cd "$(dirname "$0")/.."
+out="${OUT:-out/gpu_check}"
+mkdir -p "$out"
+frames="${1:-0}"
+shift || true
+schedulers=("${@:-sp}")
+[ $# -eq 0 ] && schedulers=(direct sp dp pt graph)
+export GVDP_BIN="$PWD/carry/gvdp"
+{
+  nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader
+  compute-sanitizer --version | tail -n 1
+} | tee "$out/device.txt"
+status=0
 
-                    echo "== tests"./
-                    carry / gvdp_tests-- gtest_brief =
-                        1 > "$out/tests.log" 2 > & 1 || status =
-                            1 grep - E
-                                "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure"
-                                "$out/tests.log" |
-                            tail - n 25
-#One sanitizer run : prints "<tool> <scheduler> <pool>: <the tool's summary>", FAIL if the tool
-#found anything or the render failed.
-                                sanitize() {
-  local tool = $1 sched = $2 pool = $3 bin = $4 note =
-  ${5 : -} local scene = forest movement = walkthrough args = ()["$pool" = tiny]&& scene =
-      random - spheres movement = backward["$sched" != direct]&& args =
-          (--pool - bricks "$([ " $pool
-                           " = tiny ] && echo 64 || echo 20000)")["$pool" = late]&& args +=
-      (--budget - ms 0)
-#pt with its lookahead on(off by default) : the protocol with every kind of claim in it.
-          ["$sched" = pt]&& args += (--lookahead 4)local log =
-              / tmp / sanitize.log GVDP_GRAPH_LOOP =
-                  $graph_loop timeout 240 compute - sanitizer-- tool "$tool" --error -
-                      exitcode 9 --print -
-                      limit 20 "$bin" render-- backend cuda-- scheduler "$sched" --scene
-                      "$scene" --movement
-                      "$movement" --width 160 --height 100 --frames 2 "${args[@]}" --out
-                      "/tmp/sanitize_$sched" >
-                  "$log" 2 > & 1 local rc = $
-      ? local summary summary = $(grep - E
-                                      "(ERROR|RACECHECK) SUMMARY"
-                                      "$log" |
-                                  tail - n 1 | sed 's/^========= //') local verdict =
-            ok
-#A tool that instruments nothing finds nothing : its warning fails the run.
-            if grep -
-            q
-            "not supported by the selected tool"
-            "$log";
-  then summary = "the tool did not instrument this binary: $summary"[$rc - eq 0]&& rc =
-      8 fi if[$rc - ne 0] || [-z "$summary"];
-  then verdict = FAIL status = 1 fi printf
-      "%-9s %-6s %-5s %-4s %s%s\n"
-      "$tool"
-      "$sched"
-      "$pool"
-      "$verdict"
-      "${summary:-no summary (rc $rc)}"
-      "$note" {
-    echo "=== $tool $sched $pool (rc $rc)";
-    cat "$log";
-  }
-  >> "$out/sanitizer.log"
+echo "== tests"
+./carry/gvdp_tests --gtest_brief=1 >"$out/tests.log" 2>&1 || status=1
+grep -E "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure" "$out/tests.log" | tail -n 25
+
+# One sanitizer run: prints "<tool> <scheduler> <pool>: <the tool's summary>", FAIL if the tool
+# found anything or the render failed.
+sanitize() {
+  local tool=$1 sched=$2 pool=$3 bin=$4 note=${5:-}
+  local scene=forest movement=walkthrough args=()
+  [ "$pool" = tiny ] && scene=random-spheres movement=backward
+  [ "$sched" != direct ] && args=(--pool-bricks "$([ "$pool" = tiny ] && echo 64 || echo 20000)")
+  [ "$pool" = late ] && args+=(--budget-ms 0)
+  # pt with its lookahead on (off by default): the protocol with every kind of claim in it.
+  [ "$sched" = pt ] && args+=(--lookahead 4)
+  local log=/tmp/sanitize.log
+  GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
+    --backend cuda --scheduler "$sched" --scene "$scene" --movement "$movement" --width 160 \
+    --height 100 --frames 2 "${args[@]}" --out "/tmp/sanitize_$sched" >"$log" 2>&1
+  local rc=$?
+  local summary
+  summary=$(grep -E "(ERROR|RACECHECK) SUMMARY" "$log" | tail -n 1 | sed 's/^========= //')
+  local verdict=ok
+  # A tool that instruments nothing finds nothing: its warning fails the run.
+  if grep -q "not supported by the selected tool" "$log"; then
+    summary="the tool did not instrument this binary: $summary"
+    [ $rc -eq 0 ] && rc=8
+  fi
+  if [ $rc -ne 0 ] || [ -z "$summary" ]; then
+    verdict=FAIL
+    status=1
+  fi
+  printf "%-9s %-6s %-5s %-4s %s%s\n" "$tool" "$sched" "$pool" "$verdict" "${summary:-no summary (rc $rc)}" "$note"
+  { echo "=== $tool $sched $pool (rc $rc)"; cat "$log"; } >>"$out/sanitizer.log"
 }
 
 graph_loop=device
 echo "== compute-sanitizer (160x100, 2 frames; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0)"
 : >"$out/sanitizer.log"
-for sched in "${schedulers[@]}";
-do
+for sched in "${schedulers[@]}"; do
   pools=(large tiny late)
   [ "$sched" = direct ] && pools=(none)
-  for pool in "${pools[@]}";
-do
-  sanitize memcheck
-      "$sched"
-      "$pool"./
-      carry / gvdp if["$sched" = dp];
-then printf
-    "%-9s %-6s %-5s %-4s %s\n"
-    "init/race/sync" dp "$pool" skip
-    "not run: initcheck, racecheck and synccheck do not instrument CUDA Dynamic Parallelism; dp's "
-    "protocol runs under ThreadSanitizer on its CPU twin (scripts/tsan.sh: DpCpu tests, in "
-    "CI)" continue fi sanitize initcheck
-    "$sched"
-    "$pool"./
-    carry / nocdp / gvdp if["$sched" = graph];
-then
-#compute - sanitizer 2025.3 cannot check kernels of a conditional node's body (racecheck
-#crashes in its own library, synccheck misreports barriers : scripts / probe / graph_probe.cu):
-#the same kernels with the host repeating the loop's body (graph_cuda.h).
-    graph_loop = host sanitize racecheck graph "$pool"./ carry / nocdp /
-                 gvdp "  (GVDP_GRAPH_LOOP=host)" sanitize synccheck graph "$pool"./ carry / nocdp /
-                 gvdp "  (GVDP_GRAPH_LOOP=host)" graph_loop = device continue fi sanitize racecheck
-                                                              "$sched"
-                                                              "$pool"./
-                                                              carry / nocdp /
-                                                              gvdp sanitize synccheck
-                                                              "$sched"
-                                                              "$pool"./
-                                                              carry / nocdp /
-                                                              gvdp done done
+  for pool in "${pools[@]}"; do
+    sanitize memcheck "$sched" "$pool" ./carry/gvdp
+    if [ "$sched" = dp ]; then
+      printf "%-9s %-6s %-5s %-4s %s\n" "init/race/sync" dp "$pool" skip \
+        "not run: initcheck, racecheck and synccheck do not instrument CUDA Dynamic Parallelism; dp's protocol runs under ThreadSanitizer on its CPU twin (scripts/tsan.sh: DpCpu tests, in CI)"
+      continue
+    fi
+    sanitize initcheck "$sched" "$pool" ./carry/nocdp/gvdp
+    if [ "$sched" = graph ]; then
+      # compute-sanitizer 2025.3 cannot check kernels of a conditional node's body (racecheck
+      # crashes in its own library, synccheck misreports barriers: scripts/probe/graph_probe.cu):
+      # the same kernels with the host repeating the loop's body (graph_cuda.h).
+      graph_loop=host
+      sanitize racecheck graph "$pool" ./carry/nocdp/gvdp "  (GVDP_GRAPH_LOOP=host)"
+      sanitize synccheck graph "$pool" ./carry/nocdp/gvdp "  (GVDP_GRAPH_LOOP=host)"
+      graph_loop=device
+      continue
+    fi
+    sanitize racecheck "$sched" "$pool" ./carry/nocdp/gvdp
+    sanitize synccheck "$sched" "$pool" ./carry/nocdp/gvdp
+  done
+done
 
-                                                              if["$frames" - gt 0]; then
+if [ "$frames" -gt 0 ]; then
   echo "== renders (1500x1000, $frames frames)"
-  for sched in "${schedulers[@]}";
-do
+  for sched in "${schedulers[@]}"; do
     pngs=()
-    for scene in perlin fbm forest random-spheres aligned-spheres;
-do
-dir = "/tmp/render_${sched}_${scene}" echo "== $sched $scene" >>
-          "$out/renders.log"./ carry /
-              gvdp render-- backend cuda-- scheduler "$sched" --scene
-              "$scene" --width 1500 --height 1000 --frames "$frames" --out "$dir" >>
-          "$out/renders.log" 2 > & 1 ||
-      status =
-          1 echo "$sched $scene: $(tail -n 1 " $out / renders.log ")" cp
-                                                                  "$dir/frame_0000.png"
-                                                                  "/tmp/${scene}.png" && pngs +=
-    ("/tmp/${scene}.png")done python3 scripts / montage.py
-                                                "$out/montage_${sched}.png"
-                                                "${pngs[@]}" ||
-    true done fi echo "gpu_check: $([ $status -eq 0 ] && echo " all passed
-                      " || echo FAILED)" exit $status
+    for scene in perlin fbm forest random-spheres aligned-spheres; do
+      dir="/tmp/render_${sched}_${scene}"
+      echo "== $sched $scene" >>"$out/renders.log"
+      ./carry/gvdp render --backend cuda --scheduler "$sched" --scene "$scene" --width 1500 \
+        --height 1000 --frames "$frames" --out "$dir" >>"$out/renders.log" 2>&1 || status=1
+      echo "$sched $scene: $(tail -n 1 "$out/renders.log")"
+      cp "$dir/frame_0000.png" "/tmp/${scene}.png" && pngs+=("/tmp/${scene}.png")
+    done
+    python3 scripts/montage.py "$out/montage_${sched}.png" "${pngs[@]}" || true
+  done
+fi
+echo "gpu_check: $([ $status -eq 0 ] && echo "all passed" || echo FAILED)"
+exit $status
