@@ -12,7 +12,7 @@
 namespace gvdp::detail {
 namespace {
 
-constexpr int MOVING_FRAMES = 4, MAX_STILL_FRAMES = 64;
+constexpr int MOVING_FRAMES = 4, MAX_STILL_FRAMES = 128;
 
 SequenceOptions sequence(const std::string& scene, Backend backend, SchedulerKind kind) {
   SequenceOptions o;

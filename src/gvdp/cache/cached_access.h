@@ -5,7 +5,8 @@
 // stops, as on IN_PRODUCTION. In a degraded frame (no free slot left) nothing is produced: the
 // ray samples the nearest resident coarser level, or passes through. Past a budgeted frame's
 // deadline (BrickCache::setBudget) the ray does not stop either: it shows the nearest resident
-// coarser level, and a MISSING brick is still claimed, without waiting, for the next frames.
+// coarser level, and the MISSING bricks it meets are still claimed (a few), without waiting, for
+// the next frames.
 #pragma once
 
 #include "gvdp/base/atomics.h"
@@ -15,6 +16,9 @@
 #include "gvdp/render/march.h"
 
 namespace gvdp::detail {
+
+// Bricks a march claims past its frame's deadline (CachedAccess::lateStandIn).
+constexpr uint32_t MAX_LATE_CLAIMS = 8;
 
 // Claims a MISSING brick for production: true for the one thread whose CAS won.
 GVDP_HD GVDP_INLINE bool claimBrick(uint32_t* entry) {
@@ -81,7 +85,8 @@ struct CachedAccess {
   OnMiss onMiss{};
   uint32_t* stopEntry = nullptr;                 // the entry the ray stopped on (dp re-reads it)
   uint32_t samples = 0, lookups = 0, skips = 0;  // this march's (addCounts after it)
-  uint32_t coarser = 0;  // 1 once a coarser level stood in for a brick that was not ready
+  uint32_t coarser = 0;     // 1 once a coarser level stood in for a brick that was not ready
+  uint32_t lateClaims = 0;  // bricks claimed past the deadline (lateStandIn)
 
   // An ancestor's entry; MISSING outside its window (never read: it would alias another brick).
   GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
@@ -129,8 +134,9 @@ struct CachedAccess {
     return cache.budgeted && clockNanoseconds() >= *cache.deadline();
   }
 
-  GVDP_HD BrickLookup showCoarser(const BrickLookup& b) {
+  GVDP_HD BrickLookup showCoarser(BrickLookup b) {
     coarser = 1;
+    if (b.state == BrickState::Resident) b.state = BrickState::StandIn;
     return b;
   }
 
@@ -156,22 +162,43 @@ struct CachedAccess {
     if (isSlot(e)) return resident(e, level, brick);
     if (isEmptyEntry(e)) return empty(level, brick, e);
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
+    bool fallBack = degraded();
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
       a = halfFloor(a);
       uint32_t ea = entryAt(up, a);
       if (isEmptyEntry(ea)) return empty(up, a, ea);
-      if (isSlot(ea) && degraded()) return showCoarser(resident(ea, up, a));
+      if (isSlot(ea) && fallBack) return showCoarser(resident(ea, up, a));
     }
-    if (degraded()) return showCoarser({BrickState::Empty, 0u, level, brick});  // nothing
-    if (late()) {  // produced for the next frames, stood in for now
-      if (e == ENTRY_MISSING)
-        onMiss.ahead(cache, level, cache.clipmap.globalBrick(level, brick), entry);
-      return showCoarser(standIn(level, brick));
-    }
+    if (fallBack) return showCoarser({BrickState::Empty, 0u, level, brick});  // nothing
+    if (late()) return showCoarser(lateStandIn(level, brick, e, entry));
     if (e == ENTRY_MISSING) onMiss(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     stopEntry = entry;
     return {BrickState::Stop, 0u, level, brick};
+  }
+
+  // Past the deadline: the nearest resident coarser ancestor stands in, and the bricks are claimed
+  // for the next frames, up to MAX_LATE_CLAIMS per march (the chain the ray would have waited on
+  // one brick after the other): the brick if it is MISSING, and its parent if no ancestor is
+  // resident and the parent is MISSING, so that the next frame has a stand-in for its neighbours
+  // too. Measured on an H100 (pt walkthroughs, --budget-ms 8; BENCHMARKS.md "Frame-time budget"):
+  // without a cap, random-spheres produced 3.6x the bricks of exact frames; claiming only before
+  // the first stand-in left chains one brick per frame and 20-37% of fbm's pixels coarser.
+  GVDP_HD BrickLookup lateStandIn(int level, Vec3i brick, uint32_t e, uint32_t* entry) {
+    BrickLookup b = standIn(level, brick);
+    if (lateClaims >= MAX_LATE_CLAIMS) return b;
+    if (e == ENTRY_MISSING) {
+      ++lateClaims;
+      onMiss.ahead(cache, level, cache.clipmap.globalBrick(level, brick), entry);
+    }
+    Vec3i parent = halfFloor(brick);
+    uint32_t index = level + 1 < lod.levels ? cache.clipmap.windowEntryOfLocal(level + 1, parent)
+                                            : Clipmap::NOT_IN_WINDOW;
+    if (b.state == BrickState::Empty && index != Clipmap::NOT_IN_WINDOW &&
+        loadEntry(&cache.entries[index]) == ENTRY_MISSING && lateClaims++ < MAX_LATE_CLAIMS)
+      onMiss.ahead(cache, level + 1, cache.clipmap.globalBrick(level + 1, parent),
+                   &cache.entries[index]);
+    return b;
   }
 
   // The nearest resident coarser ancestor of a brick, or the brick itself as an empty one when

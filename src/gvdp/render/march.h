@@ -47,12 +47,13 @@ GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, const LevelSpan&
   s.step = step <= s.step ? s.step + 1 : step;
 }
 
-enum class BrickState : uint8_t { Resident, Empty, Stop };
+enum class BrickState : uint8_t { Resident, StandIn, Empty, Stop };
 
 // What to do with the brick under a sample: sample `slot` (Resident; its clear cells sample
 // zero, `occupancy`) or leave the empty box `emptyCodes` names (render/empty_box.h; Empty),
 // both at `level`, which is the sample's level or a coarser one (an EMPTY ancestor, or a
-// resident ancestor standing in for a missing brick in a degraded frame).
+// resident ancestor). StandIn: a resident ancestor sampled for a brick that was not ready (a
+// degraded frame, or past a frame's budget); it serves the samples of its whole box.
 struct BrickLookup {
   BrickState state;
   uint32_t slot;
@@ -74,8 +75,17 @@ enum class MarchResult : uint8_t { Finished, Stopped };
 // Access provides:
 //   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level
 //   Vec4f sample(const BrickLookup&, Vec3f p)    p: local position of the sample
-// A resident lookup is reused while the samples stay in the same brick of its level (a coarser
-// stand-in, in a degraded frame, is looked up again at every sample).
+// A resident lookup is reused while the samples stay in its brick at their own level, a StandIn
+// while they stay in its box (a coarser Resident one - the lookahead's prediction - is looked up
+// again at every sample: the lookahead claims the finer bricks under it).
+// Whether lookup r answers for brick `brick` of `level` (see above).
+GVDP_HD GVDP_INLINE bool covers(const BrickLookup& r, int level, Vec3i brick) {
+  if (r.level == level) return brick == r.brick;
+  int up = r.level - level;
+  return r.state == BrickState::StandIn && up > 0 &&
+         Vec3i{brick.x >> up, brick.y >> up, brick.z >> up} == r.brick;
+}
+
 template <class Access>
 GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
   BrickLookup resident{BrickState::Resident, 0u, -1, {0, 0, 0}};
@@ -98,7 +108,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
     // (neighbouring bricks share their border samples, and EMPTY bounds reach a voxel beyond).
     Vec3i brick = floorToInt(p * span.bricksPerUnit);
     BrickLookup b = resident;
-    if (resident.level != s.level || !(brick == resident.brick)) {
+    if (!covers(resident, s.level, brick)) {
       b = access.lookup(s.level, brick);
       if (b.state == BrickState::Stop) return MarchResult::Stopped;
       if (b.state == BrickState::Empty) {
