@@ -186,18 +186,24 @@ struct CachedAccess {
   // the first stand-in left chains one brick per frame and 20-37% of fbm's pixels coarser.
   GVDP_HD BrickLookup lateStandIn(int level, Vec3i brick, uint32_t e, uint32_t* entry) {
     BrickLookup b = standIn(level, brick);
-    if (lateClaims >= MAX_LATE_CLAIMS) return b;
-    if (e == ENTRY_MISSING) {
+    if (e == ENTRY_MISSING && lateClaims < MAX_LATE_CLAIMS) {
       ++lateClaims;
       onMiss.ahead(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     }
+    if (b.state != BrickState::Empty) return b;
     Vec3i parent = halfFloor(brick);
     uint32_t index = level + 1 < lod.levels ? cache.clipmap.windowEntryOfLocal(level + 1, parent)
                                             : Clipmap::NOT_IN_WINDOW;
-    if (b.state == BrickState::Empty && index != Clipmap::NOT_IN_WINDOW &&
-        loadEntry(&cache.entries[index]) == ENTRY_MISSING && lateClaims++ < MAX_LATE_CLAIMS)
+    if (index != Clipmap::NOT_IN_WINDOW && lateClaims < MAX_LATE_CLAIMS &&
+        loadEntry(&cache.entries[index]) == ENTRY_MISSING) {
+      ++lateClaims;
       onMiss.ahead(cache, level + 1, cache.clipmap.globalBrick(level + 1, parent),
                    &cache.entries[index]);
+    }
+    // Nothing to show: the ray passes through while it may still claim (the chain it would have
+    // waited on), then ends rather than march on to the scene's end through bricks that are not
+    // there (what lies behind them is not what the exact ray would show either).
+    if (lateClaims >= MAX_LATE_CLAIMS) b.state = BrickState::End;
     return b;
   }
 

@@ -47,13 +47,14 @@ GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, const LevelSpan&
   s.step = step <= s.step ? s.step + 1 : step;
 }
 
-enum class BrickState : uint8_t { Resident, StandIn, Empty, Stop };
+enum class BrickState : uint8_t { Resident, StandIn, Empty, Stop, End };
 
 // What to do with the brick under a sample: sample `slot` (Resident; its clear cells sample
 // zero, `occupancy`) or leave the empty box `emptyCodes` names (render/empty_box.h; Empty),
 // both at `level`, which is the sample's level or a coarser one (an EMPTY ancestor, or a
 // resident ancestor). StandIn: a resident ancestor sampled for a brick that was not ready (a
-// degraded frame, or past a frame's budget); it serves the samples of its whole box.
+// degraded frame, or past a frame's budget); it serves the samples of its whole box. End: past a
+// frame's budget, nothing is resident to stand in: the ray ends with what it has composited.
 struct BrickLookup {
   BrickState state;
   uint32_t slot;
@@ -111,6 +112,10 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
     if (!covers(resident, s.level, brick)) {
       b = access.lookup(s.level, brick);
       if (b.state == BrickState::Stop) return MarchResult::Stopped;
+      if (b.state == BrickState::End) {
+        s.level = lod.levels;
+        return MarchResult::Finished;
+      }
       if (b.state == BrickState::Empty) {
         // Every sample of the box at a level up to the box's own is zero; coarser samples in
         // it may not be: the skip ends at the box or at the end of its level, whichever comes
