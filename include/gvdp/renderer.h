@@ -73,6 +73,9 @@ class Renderer {
   // enqueued on `stream` (cuda backend). The renderer works on a stream of its own and has
   // finished the frame when this returns; its next frame waits for the copy.
   FrameStats render(const CameraPose& pose, uint32_t* devicePixels, CUstream_st* stream);
+  // Records the GPU-cores timeline (profile/) of the following frames into
+  // FrameStats::timeline, until called again with false.
+  void recordTimeline(bool on);
   // Bytes of every structure the renderer holds, by name.
   MemoryReport memory() const;
   // Frames rendered so far.

@@ -1,13 +1,17 @@
 // The gvdp command line: render, scenes, info (docs/DESIGN.md "Command line contract").
 // Library code throws; this is the one place that turns an exception into a message and an
 // exit status: 2 for bad input, 1 for internal failures.
+#include <pthread.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <thread>
 #include <vector>
 
 #include "gvdp/base/error.h"
@@ -20,7 +24,9 @@
 #include "gvdp/io/output_paths.h"
 #include "gvdp/io/stats.h"
 #include "gvdp/io/timeline_export.h"
+#include "gvdp/io/video.h"
 #include "gvdp/sched/memory_estimate.h"
+#include "gvdp/serve/server.h"
 
 namespace gvdp::detail {
 namespace {
@@ -40,8 +46,9 @@ constexpr int64_t MAX_POOL_MB = 190000;
 // Numbers left unset take the backend's default.
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
-  std::string origin = "0,0,0", out = "out", timeline;
+  std::string origin = "0,0,0", out = "out", timeline, video;
   std::optional<int> frames, width, height;
+  int videoFps = 30;
   int levels = DEFAULT_LEVELS;
   std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead;
   std::optional<double> budgetMs;
@@ -84,6 +91,9 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
   cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
   cmd->add_option("--timeline", f.timeline,
                   "also record every frame's GPU-cores timeline: DIR/timeline_NNNN.png and .json");
+  cmd->add_option("--video", f.video,
+                  "also encode the frames into a video file (H.264; needs the ffmpeg command)");
+  cmd->add_option("--video-fps", f.videoFps, "the video's frame rate (default 30)");
 }
 
 // "auto" is the GPU when there is one; "cuda" must find a device now, before any output is made.
@@ -209,9 +219,14 @@ void printMemoryReport(const MemoryReport& memory) {
 
 int runRender(const RenderFlags& flags) {
   SequenceOptions o = toOptions(flags);
+  GVDP_INPUT_CHECK(flags.videoFps >= 1 && flags.videoFps <= 240, "bad --video-fps ", flags.videoFps,
+                   " (expected 1..240)");
   OutputPaths outputs;
   outputs.directory(flags.out);
   if (!flags.timeline.empty()) outputs.directory(flags.timeline);
+  if (!flags.video.empty()) outputs.file(flags.video);
+  std::optional<VideoWriter> video;
+  if (!flags.video.empty()) video.emplace(flags.video, o.width, o.height, flags.videoFps);
   outputs.keep();
   const std::string& dir = flags.out;
   std::fprintf(stderr, "gvdp: %s, %s, %dx%d, %d frames, scheduler %s on %s\n", o.scene.c_str(),
@@ -223,6 +238,7 @@ int runRender(const RenderFlags& flags) {
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
     writePng(image, dir + name);
+    if (video) video->add(image);
     if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
     frames.push_back(s);
     std::printf("frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s%s\n",
@@ -243,6 +259,9 @@ int runRender(const RenderFlags& flags) {
     std::fflush(stdout);
   });
   writeStatsJson(dir + "/stats.json", o, frames, memory);
+  if (video)
+    std::printf("wrote %s (%d frames at %d FPS)\n", flags.video.c_str(), video->close(),
+                flags.videoFps);
   printMemoryReport(memory);
   double total = 0.0;
   for (const FrameStats& s : frames) total += s.ms;
@@ -411,6 +430,77 @@ int runBenchCommand(const BenchFlags& f) {
   return 0;
 }
 
+struct ServeFlags {
+  std::string scene = "perlin", scheduler = "pt", backend = "auto", host = "127.0.0.1";
+  int port = 8080, quality = 80;
+  std::optional<int> width, height;
+  std::optional<double> budgetMs;
+  std::optional<int64_t> poolBricks;
+};
+
+// Every input check of `serve` (the first view's memory included) before the port is bound.
+ServeOptions serveOptions(const ServeFlags& f) {
+  ServeOptions o;
+  GVDP_INPUT_CHECK(f.port >= 0 && f.port <= 65535, "bad --port ", f.port, " (expected 0..65535)");
+  GVDP_INPUT_CHECK(f.quality >= 1 && f.quality <= 100, "bad --quality ", f.quality,
+                   " (expected 1..100)");
+  o.host = f.host;
+  o.port = f.port;
+  LoopOptions& loop = o.loop;
+  loop.backend = resolveBackend(f.backend);
+  bool gpu = loop.backend == Backend::Cuda;
+  ViewSettings first;
+  first.width = gpu ? 1500 : 320;
+  first.height = gpu ? 1000 : 200;
+  auto text = [](const auto& v) {
+    return v ? std::optional<std::string>(std::to_string(*v)) : std::nullopt;
+  };
+  loop.view = parseViewSettings(first, loop.backend, f.scene, f.scheduler, text(f.width),
+                                text(f.height), text(f.budgetMs));
+  loop.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
+  loop.quality = f.quality;
+  loop.encoders = std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / 4, 1, 4);
+  SequenceOptions check;
+  check.scene = loop.view.scene;
+  check.scheduler.backend = loop.backend;
+  check.scheduler.kind = loop.view.scheduler;
+  check.scheduler.poolBricks = loop.poolBricks;
+  check.scheduler = resolvedOptions(check.scheduler);
+  check.width = loop.view.width;
+  check.height = loop.view.height;
+  validate(check);
+  checkResources(check);
+  return o;
+}
+
+// Serves until SIGINT or SIGTERM, which a thread of its own waits for (the signals are blocked in
+// every other thread), so the server stops from ordinary code, not from a signal handler.
+int runServe(const ServeFlags& flags) {
+  sigset_t stopSignals;  // blocked before any thread is made: they all inherit the mask
+  sigemptyset(&stopSignals);
+  sigaddset(&stopSignals, SIGINT);
+  sigaddset(&stopSignals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+  ServeOptions o = serveOptions(flags);
+  std::signal(SIGPIPE, SIG_IGN);  // a client that goes away mid-frame
+  ViewerServer server(o);
+  std::printf("gvdp: serving %s with %s on %s at http://%s:%d/ (Ctrl-C stops)\n",
+              o.loop.view.scene.c_str(), std::string(schedulerName(o.loop.view.scheduler)).c_str(),
+              o.loop.backend == Backend::Cuda ? cudaDeviceSummary().c_str() : "the cpu",
+              o.host.c_str(), server.port());
+  std::fflush(stdout);
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&stopSignals, &signal);
+    server.stop();
+  });
+  server.run();
+  pthread_kill(waiter.native_handle(), SIGTERM);  // wakes the waiter if no signal came
+  waiter.join();
+  std::printf("gvdp: stopped\n");
+  return 0;
+}
+
 int runScenes() {
   for (const SceneInfo& s : allScenes())
     std::printf("%-16s %s\n%16s voxel size %.4g, start (%.1f, %.1f, %.1f), %.2f units/frame\n",
@@ -500,6 +590,23 @@ int run(int argc, char** argv) {
   benchCmd->add_option("--out", bench.out, "results JSON (default results.json)");
   benchCmd->add_option("--csv", bench.csv, "also a CSV file");
   benchCmd->add_option("--markdown", bench.markdown, "also a Markdown table in Table 1's shape");
+  ServeFlags serve;
+  CLI::App* serveCmd =
+      app.add_subcommand("serve", "walk through a scene live in the browser (an HTTP viewer)");
+  serveCmd->add_option("--scene", serve.scene, "the first scene: " + sceneNames());
+  serveCmd->add_option("--scheduler", serve.scheduler, "sp, dp, pt (default) or graph");
+  serveCmd->add_option("--backend", serve.backend, "cpu, cuda or auto");
+  serveCmd->add_option("--width", serve.width,
+                       "image width (default: 1500 on the GPU, 320 on the CPU)");
+  serveCmd->add_option("--height", serve.height,
+                       "image height (default: 1000 on the GPU, 200 on the CPU)");
+  serveCmd->add_option("--budget-ms", serve.budgetMs, "frame-time budget, 0..1000 (default off)");
+  serveCmd->add_option("--pool-bricks", serve.poolBricks, "brick pool slots");
+  serveCmd->add_option("--port", serve.port, "TCP port (default 8080; 0: any free one)");
+  serveCmd->add_option("--host", serve.host,
+                       "address to listen on (default 127.0.0.1: this machine only; forward the "
+                       "port with ssh -L to watch from another)");
+  serveCmd->add_option("--quality", serve.quality, "JPEG quality, 1..100 (default 80)");
   CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes");
   CLI::App* infoCmd = app.add_subcommand("info", "build, devices and defaults");
   if (argc > 1 && argv[1][0] != '-') {
@@ -524,6 +631,7 @@ int run(int argc, char** argv) {
   if (timelineCmd->parsed())
     return runTimeline(timeline, timelineFrame, timelinePng, timelineTrace);
   if (benchCmd->parsed()) return runBenchCommand(bench);
+  if (serveCmd->parsed()) return runServe(serve);
   if (scenesCmd->parsed()) return runScenes();
   if (infoCmd->parsed()) return runInfo();
   return 2;

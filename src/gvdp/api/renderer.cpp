@@ -68,6 +68,10 @@ FrameStats Renderer::render(const CameraPose& pose, uint32_t* devicePixels, CUst
   return stats;
 }
 
+void Renderer::recordTimeline(bool on) {
+  recordTimelineOf(*scheduler_, options_.scheduler.backend, on);
+}
+
 MemoryReport Renderer::memory() const {
   return scheduler_->memory();
 }

@@ -73,6 +73,8 @@ void ThreadPool::workerLoop(int worker) {
 void ThreadPool::run(int64_t n, int64_t chunk,
                      const std::function<void(int64_t, int64_t, int)>& body, uint8_t kind) {
   if (n <= 0) return;
+  // Runs from several threads (two renderers, each on a thread of its own) take turns.
+  std::lock_guard turn(callers_);
   {
     // A worker that woke late for the previous run may still be inside drain() (finding no
     // work): the shared state must not change under it, or it would pair the old chunk size

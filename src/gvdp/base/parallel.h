@@ -23,6 +23,7 @@ class ThreadPool {
   int size() const { return static_cast<int>(workers_.size()) + 1; }
 
   // Runs body(begin, end, worker) over [0, n) in chunks of `chunk`; returns when all are done.
+  // Calls from several threads take turns (body must not call run()).
   // worker is in [0, size()): 0 is the calling thread. `kind` labels the work in the timeline
   // (profile/): while one is recorded, every worker leaves one record per run.
   void run(int64_t n, int64_t chunk, const std::function<void(int64_t, int64_t, int)>& body,
@@ -37,6 +38,7 @@ class ThreadPool {
   void drainRecorded(int worker);
 
   std::vector<std::thread> workers_;
+  std::mutex callers_;  // held by the run in progress
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void(int64_t, int64_t, int)>* body_ = nullptr;

@@ -118,12 +118,18 @@ std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options, ProducerKer
 }
 }  // namespace
 
+void recordTimelineOf(Scheduler& s, Backend backend, bool on) {
+  if (!on)
+    s.recordTimeline(nullptr);
+  else
+    s.recordTimeline(backend == Backend::Cuda ? makeGpuFrameTimeline(s.stream())
+                                              : makeCpuFrameTimeline());
+}
+
 std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer) {
   std::unique_ptr<Scheduler> s = makeBare(options, std::move(producer));
-  if (options.timeline)
-    s->recordTimeline(options.backend == Backend::Cuda ? makeGpuFrameTimeline(s->stream())
-                                                       : makeCpuFrameTimeline());
+  if (options.timeline) recordTimelineOf(*s, options.backend, true);
   return s;
 }
 

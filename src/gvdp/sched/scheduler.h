@@ -141,6 +141,8 @@ void addCacheStats(Cache& cache, FrameStats& stats) {
 
 // Throws InputError when the backend is not available (no CUDA build or no device).
 void requireBackend(Backend backend);
+// Starts (on) or stops recording the timeline of the scheduler's frames, on its backend's clock.
+void recordTimelineOf(Scheduler& s, Backend backend, bool on);
 // The scheduler of `options` over a producer's kernels (for the cuda backend, compiled by nvcc).
 std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer);
