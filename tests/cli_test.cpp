@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gvdp/base/error.h"
+#include "gvdp/io/video.h"
 #include "gvdp/sched/graph/graph.h"
 #include "test_util.h"
 
@@ -272,6 +273,55 @@ TEST(Cli, RenderWritesFramesAndStats) {
   EXPECT_FALSE(j.contains("pool_bricks")) << "direct has no pool";
   EXPECT_NE(r.output.find("FPS"), std::string::npos);
   std::filesystem::remove_all(dir);
+}
+
+// --video: the frames through ffmpeg into an H.264 file with as many frames (ffprobe counts).
+TEST(Cli, RenderEncodesAVideoWithFfmpeg) {
+  if (findOnPath("ffmpeg").empty() || findOnPath("ffprobe").empty())
+    GTEST_SKIP() << "no ffmpeg/ffprobe on the PATH (scripts/setup.sh installs ffmpeg)";
+  std::string dir = test::tempDir("cli_video");
+  test::CommandResult r = test::runGvdp(
+      "render --backend cpu --scheduler sp --scene aligned-spheres --width 33 --height 21 "
+      "--frames 5 --out " +
+      dir + " --video " + dir + "/walk.mp4 --video-fps 24");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("(5 frames at 24 FPS)"), std::string::npos) << r.output;
+  test::CommandResult probe = test::runCommand(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,nb_read_frames,width,height -of csv=p=0 " +
+      dir + "/walk.mp4");
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  EXPECT_EQ(probe.output, "h264,34,22,5\n") << "odd sizes padded by a pixel";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, VideoWithoutFfmpegOrWithBadFlagsIsOneLine) {
+  std::string dir = test::tempDir("cli_video_bad");
+  test::CommandResult r =
+      test::runCommand("env PATH=/nonexistent " + test::gvdpBinary() +
+                       " render --backend cpu --out " + dir + " --video " + dir + "/x.mp4" + TINY);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("needs the ffmpeg command"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir)) << "refused before any output";
+  expectInputError(
+      "render --backend cpu --out " + dir + " --video " + dir + "/x.mp4 --video-fps 0" + TINY,
+      "--video-fps 0");
+  expectInputError("render --backend cpu --out " + dir + " --video /proc/nope/x.mp4" + TINY,
+                   "/proc/nope/x.mp4");
+}
+
+TEST(Cli, ServeRefusesBadFlagsInOneLine) {
+  expectInputError("serve --backend cpu --port 70000", "--port 70000");
+  expectInputError("serve --backend cpu --port -1", "--port -1");
+  expectInputError("serve --backend cpu --quality 0", "--quality 0");
+  expectInputError("serve --backend cpu --scene moon", "'moon'");
+  expectInputError("serve --backend cpu --scheduler direct", "'direct'");
+  expectInputError("serve --backend cpu --scheduler graph", "'graph'");
+  expectInputError("serve --backend cpu --width 100000", "'100000'");
+  expectInputError("serve --backend cpu --budget-ms 5000", "budget");
+  expectInputError("serve --backend cpu --pool-bricks 0", "--pool-bricks 0");
+  expectInputError("serve --backend cpu --port 0 --host 256.0.0.1", "cannot listen on 256.0.0.1");
 }
 
 TEST(Cli, ScenesAndInfoList) {

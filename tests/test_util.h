@@ -31,14 +31,19 @@ inline std::string gvdpBinary() {
   return env ? env : GVDP_BINARY;
 }
 
-inline CommandResult runGvdp(const std::string& args) {
-  std::string cmd = gvdpBinary() + " " + args + " 2>&1";
+// A shell command's exit status and output (stdout and stderr together).
+inline CommandResult runCommand(const std::string& command) {
+  std::string cmd = command + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];
   while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
   int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+inline CommandResult runGvdp(const std::string& args) {
+  return runCommand(gvdpBinary() + " " + args);
 }
 
 inline std::string tempDir(const std::string& name) {

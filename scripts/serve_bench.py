@@ -1,0 +1,142 @@
+#!/usr/bin/env python3
+"""A scripted viewer client: measures what `gvdp serve` delivers.
+
+For each scene it starts `gvdp serve` on a free loopback port, warms up, then holds the forward key
+(input every 250 ms, as the page does) while fetching frames as fast as they come, for --seconds.
+It reports frames delivered per second against the frames the server's loop rendered in the same
+window, the GPU-timed frame time (the renderer's FPS), input-to-frame latency (client side: input
+sent to the first frame showing it arriving; server side: from /api/stats), and the same with a
+slow client (one that takes 50 ms per frame), whose frames are dropped rather than queued.
+
+usage: serve_bench.py --gvdp BIN [--backend cuda] [--scenes perlin,...] [--scheduler pt]
+                      [--width 1500 --height 1000] [--seconds 10] [--budget-ms X] [--out FILE]"""
+import argparse
+import http.client
+import json
+import statistics
+import subprocess
+import sys
+import threading
+import time
+
+
+def get(conn, path, method="GET"):
+    conn.request(method, path, body=b"" if method == "POST" else None)
+    r = conn.getresponse()
+    return r.status, dict(r.getheaders()), r.read()
+
+
+def measure(port, seconds, slow_ms, client):
+    frames_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    input_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    stats_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    sent, sent_lock = {}, threading.Lock()  # input seq -> time sent
+    latencies, stop = [], threading.Event()
+
+    def inputs():
+        seq = 0
+        while not stop.is_set():
+            seq += 1
+            with sent_lock:
+                sent[seq] = time.perf_counter()
+            status, _, body = get(input_conn, f"/api/input?client={client}&seq={seq}&move=0,0,1", "POST")
+            if status != 200:
+                print("input refused:", status, body, file=sys.stderr)
+            stop.wait(0.25)
+
+    after, got, frame_ms, nbytes = 0, 0, [], 0
+    # Warm up: frames for 3 s (the first pool fill), then the measured window.
+    warm_end = time.perf_counter() + 3.0
+    while time.perf_counter() < warm_end:
+        status, h, body = get(frames_conn, f"/api/frame?after={after}&client={client}")
+        if status == 200:
+            after = int(h["X-Frame"])
+    thread = threading.Thread(target=inputs)
+    thread.start()
+    first_seq, start = after, time.perf_counter()
+    end = start + seconds
+    while time.perf_counter() < end:
+        status, h, body = get(frames_conn, f"/api/frame?after={after}&client={client}")
+        if status != 200:
+            continue
+        now = time.perf_counter()
+        after = int(h["X-Frame"])
+        shown_input = int(h["X-Input"])
+        with sent_lock:
+            for s in [s for s in sent if s <= shown_input]:
+                latencies.append(1e3 * (now - sent.pop(s)))
+        got += 1
+        nbytes += len(body)
+        frame_ms.append(float(h["X-Frame-Ms"]))
+        if slow_ms:
+            time.sleep(slow_ms / 1e3)
+    elapsed = time.perf_counter() - start
+    stop.set()
+    thread.join()
+    _, _, body = get(stats_conn, f"/api/stats?client={client}")
+    stats = json.loads(body)
+    rendered = after - first_seq
+    return {
+        "slow_client_ms": slow_ms,
+        "seconds": elapsed,
+        "frames_delivered": got,
+        "frames_rendered": rendered,
+        "delivered_fps": got / elapsed,
+        "loop_fps": rendered / elapsed,
+        "delivered_over_rendered": got / max(1, rendered),
+        "gpu_frame_ms_median": statistics.median(frame_ms) if frame_ms else None,
+        "renderer_fps": 1e3 / statistics.median(frame_ms) if frame_ms else None,
+        "jpeg_kb_mean": nbytes / max(1, got) / 1024,
+        "latency_client_ms_median": statistics.median(latencies) if latencies else None,
+        "latency_server_ms_median": stats["latencyMs"],
+        "dropped_by_encoders": stats["dropped"],
+        "unfinished_pixels_last": stats["unfinishedPixels"],
+    }
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--gvdp", required=True)
+    p.add_argument("--backend", default="cuda")
+    p.add_argument("--scenes", default="perlin,random-spheres,aligned-spheres")
+    p.add_argument("--scheduler", default="pt")
+    p.add_argument("--width", type=int, default=1500)
+    p.add_argument("--height", type=int, default=1000)
+    p.add_argument("--seconds", type=float, default=10.0)
+    p.add_argument("--budget-ms", default="")
+    p.add_argument("--out", default="")
+    a = p.parse_args()
+    results = []
+    for scene in a.scenes.split(","):
+        cmd = [a.gvdp, "serve", "--port", "0", "--backend", a.backend, "--scene", scene,
+               "--scheduler", a.scheduler, "--width", str(a.width), "--height", str(a.height)]
+        if a.budget_ms:
+            cmd += ["--budget-ms", a.budget_ms]
+        server = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        banner = server.stdout.readline()
+        print(banner.strip(), flush=True)
+        port = int(banner.split("http://127.0.0.1:")[1].split("/")[0])
+        for slow in (0, 50):
+            r = measure(port, a.seconds, slow, f"bench{slow}")
+            r.update(scene=scene, scheduler=a.scheduler, width=a.width, height=a.height,
+                     budget_ms=a.budget_ms or None, server=banner.strip())
+            results.append(r)
+            print(json.dumps(r), flush=True)
+            time.sleep(3.5)  # the driver's seat frees before the next client
+        server.terminate()
+        server.wait(timeout=30)
+    if a.out:
+        with open(a.out, "w") as f:
+            json.dump(results, f, indent=1)
+    print("| scene | client | delivered FPS | loop FPS | delivered / rendered | renderer FPS (GPU-timed median) | latency client / server ms | JPEG KB |")
+    print("|---|---|---|---|---|---|---|---|")
+    for r in results:
+        print(f"| {r['scene']} | {'slow (50 ms)' if r['slow_client_ms'] else 'fast'} | "
+              f"{r['delivered_fps']:.1f} | {r['loop_fps']:.1f} | {r['delivered_over_rendered']:.3f} | "
+              f"{r['renderer_fps']:.1f} | {r['latency_client_ms_median']:.1f} / {r['latency_server_ms_median']:.1f} | "
+              f"{r['jpeg_kb_mean']:.0f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
