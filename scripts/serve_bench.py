@@ -105,6 +105,7 @@ def main():
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--budget-ms", default="")
     p.add_argument("--out", default="")
+    p.add_argument("--timeline-dir", default="", help="also save each scene's timeline PNG here")
     a = p.parse_args()
     results = []
     for scene in a.scenes.split(","):
@@ -123,6 +124,13 @@ def main():
             results.append(r)
             print(json.dumps(r), flush=True)
             time.sleep(3.5)  # the driver's seat frees before the next client
+        if a.timeline_dir:
+            conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+            status, _, png = get(conn, "/api/timeline?client=timeline", "POST")
+            print(f"timeline of {scene}: HTTP {status}, {len(png)} bytes", flush=True)
+            if status == 200:
+                with open(f"{a.timeline_dir}/serve_timeline_{scene}.png", "wb") as f:
+                    f.write(png)
         server.terminate()
         server.wait(timeout=30)
     if a.out:
