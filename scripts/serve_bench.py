@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """A scripted viewer client: measures what `gvdp serve` delivers.
 
-For each scene it starts `gvdp serve` on a free loopback port, warms up, then holds the forward key
-(input every 250 ms, as the page does) while fetching frames as fast as they come, for --seconds.
+For each scene it starts `gvdp serve` on a free loopback port, warms up, then fetches frames as fast
+as they come for --seconds while sending input every 250 ms, as the page does: with --path the
+camera follows that camera path (the input moves nothing, so the path goes on; the frames are
+the benchmark's), else the input holds the forward key.
 It reports frames delivered per second against the frames the server's loop rendered in the same
 window, the GPU-timed frame time (the renderer's FPS), input-to-frame latency (client side: input
 sent to the first frame showing it arriving; server side: from /api/stats), and the same with a
@@ -26,7 +28,7 @@ def get(conn, path, method="GET"):
     return r.status, dict(r.getheaders()), r.read()
 
 
-def measure(port, seconds, slow_ms, client):
+def measure(port, seconds, slow_ms, client, move):
     frames_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
     input_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
     stats_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
@@ -39,7 +41,7 @@ def measure(port, seconds, slow_ms, client):
             seq += 1
             with sent_lock:
                 sent[seq] = time.perf_counter()
-            status, _, body = get(input_conn, f"/api/input?client={client}&seq={seq}&move=0,0,1", "POST")
+            status, _, body = get(input_conn, f"/api/input?client={client}&seq={seq}&move={move}", "POST")
             if status != 200:
                 print("input refused:", status, body, file=sys.stderr)
             stop.wait(0.25)
@@ -76,6 +78,9 @@ def measure(port, seconds, slow_ms, client):
     _, _, body = get(stats_conn, f"/api/stats?client={client}")
     stats = json.loads(body)
     rendered = after - first_seq
+    # The renderer's own frame times (GPU-timed on cuda) of the frames rendered in the window.
+    window = stats["frameMsHistory"][-min(rendered, len(stats["frameMsHistory"])):] if rendered else []
+    renderer_ms = statistics.mean(window) if window else None
     return {
         "slow_client_ms": slow_ms,
         "seconds": elapsed,
@@ -84,8 +89,9 @@ def measure(port, seconds, slow_ms, client):
         "delivered_fps": got / elapsed,
         "loop_fps": rendered / elapsed,
         "delivered_over_rendered": got / max(1, rendered),
-        "gpu_frame_ms_median": statistics.median(frame_ms) if frame_ms else None,
-        "renderer_fps": 1e3 / statistics.median(frame_ms) if frame_ms else None,
+        "renderer_frame_ms_mean": renderer_ms,
+        "renderer_fps": 1e3 / renderer_ms if renderer_ms else None,
+        "delivered_over_renderer_fps": got / elapsed * renderer_ms / 1e3 if renderer_ms else None,
         "jpeg_kb_mean": nbytes / max(1, got) / 1024,
         "latency_client_ms_median": statistics.median(latencies) if latencies else None,
         "latency_server_ms_median": stats["latencyMs"],
@@ -104,6 +110,7 @@ def main():
     p.add_argument("--height", type=int, default=1000)
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--budget-ms", default="")
+    p.add_argument("--path", default="walkthrough", help="a camera path, or free")
     p.add_argument("--out", default="")
     p.add_argument("--timeline-dir", default="", help="also save each scene's timeline PNG here")
     a = p.parse_args()
@@ -113,14 +120,15 @@ def main():
                "--scheduler", a.scheduler, "--width", str(a.width), "--height", str(a.height)]
         if a.budget_ms:
             cmd += ["--budget-ms", a.budget_ms]
+        cmd += ["--path", a.path]
         server = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         banner = server.stdout.readline()
         print(banner.strip(), flush=True)
         port = int(banner.split("http://127.0.0.1:")[1].split("/")[0])
         for slow in (0, 50):
-            r = measure(port, a.seconds, slow, f"bench{slow}")
+            r = measure(port, a.seconds, slow, f"bench{slow}", "0,0,0" if a.path != "free" else "0,0,1")
             r.update(scene=scene, scheduler=a.scheduler, width=a.width, height=a.height,
-                     budget_ms=a.budget_ms or None, server=banner.strip())
+                     budget_ms=a.budget_ms or None, path=a.path, server=banner.strip())
             results.append(r)
             print(json.dumps(r), flush=True)
             time.sleep(3.5)  # the driver's seat frees before the next client
@@ -136,12 +144,13 @@ def main():
     if a.out:
         with open(a.out, "w") as f:
             json.dump(results, f, indent=1)
-    print("| scene | client | delivered FPS | loop FPS | delivered / rendered | renderer FPS (GPU-timed median) | latency client / server ms | JPEG KB |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| scene | client | delivered FPS | loop FPS | renderer FPS | delivered / renderer FPS | frames delivered / rendered | latency client / server ms | JPEG KB |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in results:
         print(f"| {r['scene']} | {'slow (50 ms)' if r['slow_client_ms'] else 'fast'} | "
-              f"{r['delivered_fps']:.1f} | {r['loop_fps']:.1f} | {r['delivered_over_rendered']:.3f} | "
-              f"{r['renderer_fps']:.1f} | {r['latency_client_ms_median']:.1f} / {r['latency_server_ms_median']:.1f} | "
+              f"{r['delivered_fps']:.1f} | {r['loop_fps']:.1f} | {r['renderer_fps'] or 0:.1f} | "
+              f"{r['delivered_over_renderer_fps'] or 0:.3f} | {r['delivered_over_rendered']:.3f} | "
+              f"{r['latency_client_ms_median'] or 0:.1f} / {r['latency_server_ms_median']:.1f} | "
               f"{r['jpeg_kb_mean']:.0f} |")
     return 0
 

@@ -99,6 +99,11 @@ TEST(ServeParams, ViewSettingsNameTheBadValue) {
   refused([&] { parse({}, {}, "100000", {}); }, "'100000'");
   refused([&] { parse({}, {}, {}, "-1"); }, "'-1'");
   refused([&] { parse({}, {}, {}, "1001"); }, "'1001'");
+  EXPECT_EQ(parseViewSettings(cur, Backend::Cpu, {}, {}, {}, {}, {}, "walkthrough").path,
+            Movement::Walkthrough);
+  EXPECT_FALSE(parseViewSettings(v, Backend::Cpu, {}, {}, {}, {}, {}, "free").path);
+  refused([&] { parseViewSettings(cur, Backend::Cpu, {}, {}, {}, {}, {}, "moonwalk"); },
+          "'moonwalk'");
 }
 
 TEST(ServeCamera, FliesInTheCamerasFrameAndClampsPitch) {
@@ -204,6 +209,42 @@ TEST(ServeLoop, StreamsTheRenderersFramesAndFliesOnInput) {
   EXPECT_EQ(png.substr(0, 4), "\x89PNG");
   loop.stop();
   EXPECT_FALSE(loop.frameAfter(f->seq, 10ms));  // stopped: no wait
+}
+
+// On a path the camera is the benchmark's pose of each frame, until an input moves it.
+TEST(ServeLoop, FollowsACameraPathUntilTheDriverMovesIt) {
+  LoopOptions o = smallLoop("aligned-spheres");
+  o.view.path = Movement::Forward;
+  RenderLoop loop(o);
+  const SceneInfo& scene = findScene("aligned-spheres");
+  auto f = nextFrame(loop, 0);
+  ASSERT_TRUE(f);
+  f = nextFrame(loop, f->seq);
+  ASSERT_TRUE(f);
+  nlohmann::json s = loop.stats();
+  uint64_t frame = s["frame"];  // frames 0..frame-1 of the path were rendered
+  CameraPose expected =
+      cameraAt(Movement::Forward, scene.start, scene.speed, static_cast<int>(frame) - 1);
+  EXPECT_NEAR(s["camera"]["z"].get<double>(), expected.position.z, 1e-9) << s.dump();
+  EXPECT_GT(s["camera"]["z"].get<double>(), scene.start.position.z);
+  EXPECT_EQ(s["path"], "forward");
+  FlyInput still;  // moves nothing: stays on the path
+  still.seq = 1;
+  loop.input(still);
+  EXPECT_EQ(loop.view().path, Movement::Forward);
+  FlyInput turn;
+  turn.seq = 2;
+  turn.yaw = 0.5f;
+  loop.input(turn);
+  EXPECT_FALSE(loop.view().path);
+  for (int i = 0; i < 100 && f && f->inputSeq < 2; ++i) f = nextFrame(loop, f->seq);
+  ASSERT_TRUE(f);
+  f = nextFrame(loop, f->seq);
+  ASSERT_TRUE(f);
+  s = loop.stats();
+  EXPECT_EQ(s["path"], "free");
+  double yaw = s["camera"]["yaw"];
+  EXPECT_NEAR(yaw, scene.start.yaw + 0.5, 1e-5) << "turned from the path's pose, then flown freely";
 }
 
 TEST(ServeLoop, ABadViewKeepsTheLastOneAndSaysWhy) {

@@ -432,6 +432,7 @@ int runBenchCommand(const BenchFlags& f) {
 
 struct ServeFlags {
   std::string scene = "perlin", scheduler = "pt", backend = "auto", host = "127.0.0.1";
+  std::string path = "free";
   int port = 8080, quality = 80;
   std::optional<int> width, height;
   std::optional<double> budgetMs;
@@ -456,7 +457,7 @@ ServeOptions serveOptions(const ServeFlags& f) {
     return v ? std::optional<std::string>(std::to_string(*v)) : std::nullopt;
   };
   loop.view = parseViewSettings(first, loop.backend, f.scene, f.scheduler, text(f.width),
-                                text(f.height), text(f.budgetMs));
+                                text(f.height), text(f.budgetMs), f.path);
   loop.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   loop.quality = f.quality;
   loop.encoders = std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / 4, 1, 4);
@@ -602,6 +603,9 @@ int run(int argc, char** argv) {
                        "image height (default: 1000 on the GPU, 200 on the CPU)");
   serveCmd->add_option("--budget-ms", serve.budgetMs, "frame-time budget, 0..1000 (default off)");
   serveCmd->add_option("--pool-bricks", serve.poolBricks, "brick pool slots");
+  serveCmd->add_option("--path", serve.path,
+                       "the camera: free (flown from the page, default) or a camera path (" +
+                           movementNames() + ") followed until the page moves it");
   serveCmd->add_option("--port", serve.port, "TCP port (default 8080; 0: any free one)");
   serveCmd->add_option("--host", serve.host,
                        "address to listen on (default 127.0.0.1: this machine only; forward the "

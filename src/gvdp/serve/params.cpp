@@ -59,7 +59,8 @@ ViewSettings parseViewSettings(const ViewSettings& current, Backend backend,
                                const std::optional<std::string>& scheduler,
                                const std::optional<std::string>& width,
                                const std::optional<std::string>& height,
-                               const std::optional<std::string>& budget) {
+                               const std::optional<std::string>& budget,
+                               const std::optional<std::string>& path) {
   ViewSettings s = current;
   if (scene) s.scene = std::string(findScene(*scene).name);
   if (scheduler) {
@@ -77,7 +78,12 @@ ViewSettings parseViewSettings(const ViewSettings& current, Backend backend,
   if (budget)
     s.budgetMs =
         *budget == "off" ? NO_BUDGET : parseNumberParam("budget", *budget, 0.0, MAX_VIEW_BUDGET_MS);
+  if (path) s.path = *path == "free" ? std::nullopt : std::optional(parseMovement(*path));
   return s;
+}
+
+std::string pathName(const std::optional<Movement>& path) {
+  return path ? std::string(movementName(*path)) : "free";
 }
 
 }  // namespace gvdp::detail

@@ -8,17 +8,23 @@
 #include <string_view>
 
 #include "gvdp/base/vecmath.h"
+#include "gvdp/bench/paths.h"
 #include "gvdp/renderer.h"
 
 namespace gvdp::detail {
 
-// What the page chooses: the world, the scheduler, the image size and the frame-time budget.
+// What the page chooses: the world, the scheduler, the image size, the frame-time budget and
+// the camera: flown by the driver (no path) or following one of the benchmark's camera paths
+// (one path frame per rendered frame) until the driver moves it.
 struct ViewSettings {
   std::string scene = "perlin";
   SchedulerKind scheduler = SchedulerKind::Pt;
   int width = 0, height = 0;
   double budgetMs = NO_BUDGET;
+  std::optional<Movement> path;
 };
+// "free" or the path's name.
+std::string pathName(const std::optional<Movement>& path);
 
 // A live view's bounds: an image of at most 3840x2160 (4K), a budget of at most 1000 ms.
 constexpr int MAX_VIEW_WIDTH = 3840, MAX_VIEW_HEIGHT = 2160, MIN_VIEW_SIZE = 16;
@@ -36,12 +42,13 @@ std::string parseClientId(std::string_view text);
 
 // `current` with the parameters a request gives replaced (name -> text, absent: nullopt):
 // scene, scheduler (not direct: the viewer shows the cached renderer), width, height, budget
-// ("off" or milliseconds). Scheduler graph needs the cuda backend.
+// ("off" or milliseconds), path ("free" or a movement). Scheduler graph needs the cuda backend.
 ViewSettings parseViewSettings(const ViewSettings& current, Backend backend,
                                const std::optional<std::string>& scene,
                                const std::optional<std::string>& scheduler,
                                const std::optional<std::string>& width,
                                const std::optional<std::string>& height,
-                               const std::optional<std::string>& budget);
+                               const std::optional<std::string>& budget,
+                               const std::optional<std::string>& path = std::nullopt);
 
 }  // namespace gvdp::detail

@@ -98,6 +98,12 @@ void RenderLoop::input(const FlyInput& in) {
     heldTime_ = Clock::now();
     turnYaw_ += in.yaw;
     turnPitch_ += in.pitch;
+    // Moving the camera takes it off its path (an input that moves nothing leaves it on).
+    bool moves = in.move.x != 0 || in.move.y != 0 || in.move.z != 0 || in.yaw != 0 || in.pitch != 0;
+    if (moves && view_.path) {
+      view_.path.reset();
+      leavePath_ = true;
+    }
   }
   wake_.notify_all();
 }
@@ -157,6 +163,7 @@ std::string RenderLoop::rebuild(const ViewSettings& view) {
     return error;
   }
   if (view.scene != active_.scene) camera_ = FlyCamera(findScene(view.scene).start);
+  if (view.scene != active_.scene || view.path != active_.path) pathFrame_ = 0;
   active_ = view;
   return error;
 }
@@ -174,6 +181,8 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   turnYaw_ = turnPitch_ = 0;
   bool withTimeline = timelineWanted_;
   timelineWanted_ = false;
+  bool leavePath = leavePath_;
+  leavePath_ = false;
   Image image;
   if (!freeImages_.empty()) {
     image = std::move(freeImages_.back());
@@ -184,8 +193,12 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   std::string error = newView ? rebuild(*newView) : std::string();
   double dt = std::min(seconds(now - lastFrameTime_), 0.25);
   lastFrameTime_ = now;
+  const SceneInfo& scene = findScene(active_.scene);
+  if (leavePath) active_.path.reset();
+  if (active_.path)
+    camera_ = FlyCamera(cameraAt(*active_.path, scene.start, scene.speed, pathFrame_++));
   camera_.turn(yaw, pitch);
-  camera_.fly(held.move, held.speed * findScene(active_.scene).speed * FLY_FRAMES_PER_SECOND, dt);
+  camera_.fly(held.move, held.speed * scene.speed * FLY_FRAMES_PER_SECOND, dt);
   if (withTimeline) renderer_->recordTimeline(true);
   FrameStats stats = renderer_->render(camera_.pose(), image);
   std::string png;
@@ -276,6 +289,7 @@ nlohmann::json RenderLoop::stats() const {
   j["width"] = view_.width;
   j["height"] = view_.height;
   j["budgetMs"] = view_.budgetMs < 0.0 ? nlohmann::json() : nlohmann::json(view_.budgetMs);
+  j["path"] = pathName(view_.path);
   j["rendering"] = wanted(now) && failure_.empty();
   j["frame"] = rendered_;
   j["renderFps"] = rate(renderTimes_, now);

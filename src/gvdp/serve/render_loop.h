@@ -103,11 +103,12 @@ class RenderLoop {
   std::unique_ptr<Renderer> renderer_;
   FlyCamera camera_;
   ViewSettings active_;  // the renderer's
+  int pathFrame_ = 0;    // the next frame of active_.path
   Clock::time_point lastFrameTime_;
 
   // Under mutex_.
   ViewSettings view_;
-  bool viewPending_ = false;
+  bool viewPending_ = false, leavePath_ = false;
   std::string viewError_, failure_;
   uint32_t poolBricks_ = 0;
   FlyInput held_;
