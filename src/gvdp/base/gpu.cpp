@@ -65,6 +65,37 @@ void copyDeviceAsync(void* dst, const void* src, size_t bytes, GpuStream stream,
   cudaEventDestroy(copied);  // released once the copy is done
   check(e, "ordering the device image copy");
 }
+
+PinnedDownload::PinnedDownload(size_t bytes) : bytes_(bytes) {
+  try {
+    check(cudaMalloc(&device_, bytes), "cudaMalloc (download buffer)");
+    check(cudaMallocHost(&host_, bytes), "cudaMallocHost (download buffer)");
+    cudaEvent_t e = nullptr;
+    check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
+    event_ = e;
+  } catch (...) {
+    cudaFree(device_);
+    cudaFreeHost(host_);
+    throw;
+  }
+}
+
+PinnedDownload::~PinnedDownload() {
+  cudaEventSynchronize(static_cast<cudaEvent_t>(event_));  // no copy in flight into freed memory
+  cudaEventDestroy(static_cast<cudaEvent_t>(event_));
+  cudaFreeHost(host_);
+  cudaFree(device_);
+}
+
+void PinnedDownload::start(GpuStream stream) {
+  check(cudaMemcpyAsync(host_, device_, bytes_, cudaMemcpyDeviceToHost, stream), "image download");
+  check(cudaEventRecord(static_cast<cudaEvent_t>(event_), stream), "cudaEventRecord");
+}
+
+const void* PinnedDownload::wait() {
+  check(cudaEventSynchronize(static_cast<cudaEvent_t>(event_)), "image download");
+  return host_;
+}
 #else
 bool cudaBuilt() {
   return false;
@@ -84,6 +115,14 @@ GpuStream createGpuStream() {
 void destroyGpuStream(GpuStream) {}
 void copyDeviceAsync(void*, const void*, size_t, GpuStream, GpuStream) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+PinnedDownload::PinnedDownload(size_t bytes) : bytes_(bytes) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+PinnedDownload::~PinnedDownload() = default;
+void PinnedDownload::start(GpuStream) {}
+const void* PinnedDownload::wait() {
+  return nullptr;
 }
 #endif
 

@@ -32,4 +32,25 @@ using OwnedGpuStream = std::unique_ptr<CUstream_st, GpuStreamDeleter>;
 // `after` may overwrite `src`). Throws in builds without CUDA.
 void copyDeviceAsync(void* dst, const void* src, size_t bytes, GpuStream stream, GpuStream after);
 
+// An image's way from the device to the host that does not hold up the next frame: a device
+// buffer (to render into), page-locked host memory, and an event; start() enqueues the copy on a
+// stream, wait() blocks until it has arrived. Throws in builds without CUDA.
+class PinnedDownload {
+ public:
+  explicit PinnedDownload(size_t bytes);
+  PinnedDownload(const PinnedDownload&) = delete;
+  PinnedDownload& operator=(const PinnedDownload&) = delete;
+  ~PinnedDownload();
+  size_t bytes() const { return bytes_; }
+  void* device() const { return device_; }
+  void start(GpuStream stream);
+  const void* wait();
+
+ private:
+  size_t bytes_;
+  void* device_ = nullptr;
+  void* host_ = nullptr;
+  void* event_ = nullptr;  // cudaEvent_t
+};
+
 }  // namespace gvdp::detail

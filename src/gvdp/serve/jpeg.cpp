@@ -15,13 +15,17 @@ JpegEncoder::~JpegEncoder() {
 }
 
 std::string JpegEncoder::encode(const Image& image, int quality) {
-  GVDP_CHECK(image.width > 0 && image.height > 0, "empty image");
+  GVDP_CHECK(image.pixels.size() == static_cast<size_t>(image.width) * image.height, "bad image");
+  return encode(image.pixels.data(), image.width, image.height, quality);
+}
+
+std::string JpegEncoder::encode(const uint32_t* pixels, int width, int height, int quality) {
+  GVDP_CHECK(width > 0 && height > 0, "empty image");
   GVDP_CHECK(quality >= 1 && quality <= 100, "bad JPEG quality ", quality);
   unsigned char* data = nullptr;
   unsigned long size = 0;
-  int rc =
-      tjCompress2(handle_, reinterpret_cast<const unsigned char*>(image.pixels.data()), image.width,
-                  0, image.height, TJPF_RGBX, &data, &size, TJSAMP_420, quality, TJFLAG_FASTDCT);
+  int rc = tjCompress2(handle_, reinterpret_cast<const unsigned char*>(pixels), width, 0, height,
+                       TJPF_RGBX, &data, &size, TJSAMP_420, quality, TJFLAG_FASTDCT);
   if (rc != 0) {
     tjFree(data);
     throw Error(concat("JPEG encoding failed: ", tjGetErrorStr2(handle_)));

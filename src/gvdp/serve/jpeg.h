@@ -16,6 +16,8 @@ class JpegEncoder {
   ~JpegEncoder();
   // The bytes of a baseline JPEG, 4:2:0 chroma, quality 1..100.
   std::string encode(const Image& image, int quality);
+  // The same of width x height RGBA8 pixels (rows packed).
+  std::string encode(const uint32_t* pixels, int width, int height, int quality);
 
  private:
   void* handle_;

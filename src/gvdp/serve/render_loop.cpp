@@ -44,12 +44,18 @@ void keepLast(std::deque<T>& d, size_t n) {
 
 RenderLoop::RenderLoop(const LoopOptions& options)
     : options_(options),
+      gpu_(options.backend == Backend::Cuda),
       renderer_(makeViewRenderer(options, options.view)),
       camera_(findScene(options.view.scene).start),
       active_(options.view),
       view_(options.view) {
   GVDP_CHECK(options.encoders >= 1 && options.quality >= 1 && options.quality <= 100,
              "bad encoder options");
+  if (gpu_) {
+    stream_.reset(createGpuStream());
+    downloads_.resize(static_cast<size_t>(options.encoders) + 2);  // made at their first frame
+    for (int i = 0; i < static_cast<int>(downloads_.size()); ++i) freeDownloads_.push_back(i);
+  }
   lastFrameTime_ = heldTime_ = Clock::now();
   lastRequest_ = Clock::time_point{};
   held_.speed = 1.0;
@@ -168,8 +174,36 @@ std::string RenderLoop::rebuild(const ViewSettings& view) {
   return error;
 }
 
+// The buffers of a job no encoder will take (or has encoded) go back; lock held.
+void RenderLoop::release(Job& job) {
+  if (job.download >= 0)
+    freeDownloads_.push_back(job.download);
+  else
+    freeImages_.push_back(std::move(job.image));
+  wake_.notify_all();
+}
+
 // One frame: called and returns with the lock held; renders and encodes without it.
 void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
+  // The frame's buffer. On the GPU: a free download, else the one of the frame waiting for an
+  // encoder (that frame is dropped), else wait for an encoder to finish one.
+  Image image;
+  int download = -1;
+  if (gpu_) {
+    wake_.wait(lock, [&] { return stop_ || !freeDownloads_.empty() || pending_; });
+    if (stop_) return;
+    if (!freeDownloads_.empty()) {
+      download = freeDownloads_.back();
+      freeDownloads_.pop_back();
+    } else {
+      download = pending_->download;
+      pending_.reset();
+      ++dropped_;
+    }
+  } else if (!freeImages_.empty()) {
+    image = std::move(freeImages_.back());
+    freeImages_.pop_back();
+  }
   std::optional<ViewSettings> newView;
   if (viewPending_) newView = view_;
   viewPending_ = false;
@@ -183,11 +217,6 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   timelineWanted_ = false;
   bool leavePath = leavePath_;
   leavePath_ = false;
-  Image image;
-  if (!freeImages_.empty()) {
-    image = std::move(freeImages_.back());
-    freeImages_.pop_back();
-  }
   lock.unlock();
 
   std::string error = newView ? rebuild(*newView) : std::string();
@@ -200,7 +229,20 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   camera_.turn(yaw, pitch);
   camera_.fly(held.move, held.speed * scene.speed * FLY_FRAMES_PER_SECOND, dt);
   if (withTimeline) renderer_->recordTimeline(true);
-  FrameStats stats = renderer_->render(camera_.pose(), image);
+  Clock::time_point callStart = Clock::now();
+  FrameStats stats;
+  if (gpu_) {
+    // The image stays on the device; its download to page-locked memory overlaps the next frame
+    // and the encoder waits for it.
+    size_t bytes = static_cast<size_t>(active_.width) * active_.height * sizeof(uint32_t);
+    std::unique_ptr<PinnedDownload>& d = downloads_[static_cast<size_t>(download)];
+    if (!d || d->bytes() != bytes) d = std::make_unique<PinnedDownload>(bytes);
+    stats = renderer_->render(camera_.pose(), static_cast<uint32_t*>(d->device()), stream_.get());
+    d->start(stream_.get());
+  } else {
+    stats = renderer_->render(camera_.pose(), image);
+  }
+  double callMs = 1e3 * seconds(Clock::now() - callStart);
   std::string png;
   if (withTimeline) {
     renderer_->recordTimeline(false);
@@ -208,7 +250,7 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
     std::string title = std::string(schedulerName(active_.scheduler)) + " on " +
                         std::string(backendName(options_.backend)) + ", " + active_.scene +
                         " frame " + std::to_string(stats.index) + ", " +
-                        std::to_string(image.width) + "x" + std::to_string(image.height);
+                        std::to_string(active_.width) + "x" + std::to_string(active_.height);
     png = encodePng(timelineImage(t.records, t.lanes, title));
     stats.timeline = {};
   }
@@ -225,11 +267,16 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   job->inputSeq = held.seq;
   job->inputTime = inputTime;
   job->renderMs = stats.ms;
+  job->width = active_.width;
+  job->height = active_.height;
   job->image = std::move(image);
+  job->download = download;
   renderTimes_.push_back(Clock::now());
   keepLast(renderTimes_, 4096);
   frameMs_.push_back(stats.ms);
   keepLast(frameMs_, HISTORY);
+  callMs_.push_back(callMs);
+  keepLast(callMs_, HISTORY);
   last_ = stats;
   lastPose_ = camera_.pose();
   if (withTimeline) {
@@ -239,7 +286,7 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   }
   if (pending_) {  // not taken by an encoder yet: dropped
     ++dropped_;
-    freeImages_.push_back(std::move(pending_->image));
+    release(*pending_);
   }
   pending_ = std::move(job);
   jobs_.notify_one();
@@ -256,10 +303,16 @@ void RenderLoop::encoderThread() {
     auto frame = std::make_shared<LiveFrame>();
     frame->seq = job->seq;
     frame->inputSeq = job->inputSeq;
-    frame->width = job->image.width;
-    frame->height = job->image.height;
+    frame->width = job->width;
+    frame->height = job->height;
     frame->renderMs = job->renderMs;
-    frame->jpeg = encoder.encode(job->image, options_.quality);
+    if (job->download >= 0) {
+      const void* pixels = downloads_[static_cast<size_t>(job->download)]->wait();
+      frame->jpeg = encoder.encode(static_cast<const uint32_t*>(pixels), job->width, job->height,
+                                   options_.quality);
+    } else {
+      frame->jpeg = encoder.encode(job->image, options_.quality);
+    }
     lock.lock();
     Clock::time_point now = Clock::now();
     if (!newest_ || frame->seq > newest_->seq) {
@@ -275,7 +328,7 @@ void RenderLoop::encoderThread() {
     } else {
       ++dropped_;
     }
-    freeImages_.push_back(std::move(job->image));
+    release(*job);
   }
 }
 
@@ -298,6 +351,10 @@ nlohmann::json RenderLoop::stats() const {
   j["dropped"] = dropped_;
   j["frameMs"] = last_.ms;
   j["frameMsHistory"] = std::vector<double>(frameMs_.begin(), frameMs_.end());
+  // The wall time of the renderer's call (frame, image to its buffer, counters), mean of the last.
+  double calls = 0.0;
+  for (double ms : callMs_) calls += ms;
+  j["renderCallMs"] = callMs_.empty() ? 0.0 : calls / static_cast<double>(callMs_.size());
   j["latencyMs"] = median(latencyMs_);  // input received to its first frame encoded, median
   j["bricksProduced"] = last_.cache.produced;
   j["poolResident"] = last_.cache.resident;

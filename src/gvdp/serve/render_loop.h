@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "gvdp/base/gpu.h"
 #include "gvdp/renderer.h"
 #include "gvdp/serve/fly_camera.h"
 #include "gvdp/serve/params.h"
@@ -81,8 +82,11 @@ class RenderLoop {
     uint64_t seq = 0, inputSeq = 0;
     Clock::time_point inputTime;
     double renderMs = 0;
-    Image image;
+    int width = 0, height = 0;
+    Image image;        // cpu backend
+    int download = -1;  // cuda backend: downloads_[download]
   };
+  void release(Job& job);
   void renderThread();
   void encoderThread();
   void renderOne(std::unique_lock<std::mutex>& lock);
@@ -92,12 +96,18 @@ class RenderLoop {
   static double rate(const std::deque<Clock::time_point>& times, Clock::time_point now);
 
   const LoopOptions options_;
+  const bool gpu_;
   mutable std::mutex mutex_;
   std::mutex joinMutex_;            // stop() from several threads
   std::condition_variable wake_;    // the render thread: a request, a view, stop
   std::condition_variable jobs_;    // encoders: a job, stop
   std::condition_variable frames_;  // frameAfter and timeline callers
   bool stop_ = false;
+
+  // The GPU's frames go to the host through these (each held by the render thread, a pending job
+  // or an encoder); the vector keeps its size, an entry is remade by the thread holding it.
+  OwnedGpuStream stream_;
+  std::vector<std::unique_ptr<PinnedDownload>> downloads_;
 
   // Render thread only (besides construction).
   std::unique_ptr<Renderer> renderer_;
@@ -119,10 +129,11 @@ class RenderLoop {
   std::string timelinePng_;
   std::unique_ptr<Job> pending_;
   std::vector<Image> freeImages_;
+  std::vector<int> freeDownloads_;
   std::shared_ptr<const LiveFrame> newest_;
   uint64_t rendered_ = 0, dropped_ = 0, latencySeq_ = 0;
   std::deque<Clock::time_point> renderTimes_, encodeTimes_, serveTimes_;
-  std::deque<double> frameMs_, latencyMs_;
+  std::deque<double> frameMs_, callMs_, latencyMs_;
   FrameStats last_;
   CameraPose lastPose_{};
 
