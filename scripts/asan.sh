@@ -11,4 +11,4 @@ cmake --build build-asan -j "$(nproc)" --target gvdp_tests gvdp
 export ASAN_OPTIONS="halt_on_error=1 abort_on_error=1 detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1 print_stacktrace=1"
 ./build-asan/tests/gvdp_tests --gtest_brief=1 \
-  --gtest_filter='Cli.*:MemoryEstimate.*:Bench.*:Paths.*:Image.*:Math.*:Lod.*:Cache.*'
+  --gtest_filter='Cli.*:MemoryEstimate.*:Bench.*:Paths.*:Image.*:Math.*:Lod.*:Cache.*:Serve*'
