@@ -31,7 +31,10 @@ def get(conn, path, method="GET"):
 def measure(port, seconds, slow_ms, client, move):
     frames_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
     input_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
-    stats_conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+
+    def stats_now():  # a connection of its own: an idle keep-alive one is closed after 2 s
+        return json.loads(get(http.client.HTTPConnection("127.0.0.1", port, timeout=30),
+                              f"/api/stats?client={client}")[2])
     sent, sent_lock = {}, threading.Lock()  # input seq -> time sent
     latencies, stop = [], threading.Event()
 
@@ -47,6 +50,7 @@ def measure(port, seconds, slow_ms, client, move):
             stop.wait(0.25)
 
     after, got, frame_ms, nbytes = 0, 0, [], 0
+    dropped_before = stats_now()["dropped"]
     # Warm up: frames for 3 s (the first pool fill), then the measured window.
     warm_end = time.perf_counter() + 3.0
     while time.perf_counter() < warm_end:
@@ -75,8 +79,8 @@ def measure(port, seconds, slow_ms, client, move):
     elapsed = time.perf_counter() - start
     stop.set()
     thread.join()
-    _, _, body = get(stats_conn, f"/api/stats?client={client}")
-    stats = json.loads(body)
+    stats = stats_now()
+    dropped = stats["dropped"] - dropped_before
     rendered = after - first_seq
     # The renderer's own frame times (GPU-timed on cuda) of the frames rendered in the window.
     window = stats["frameMsHistory"][-min(rendered, len(stats["frameMsHistory"])):] if rendered else []
@@ -95,7 +99,9 @@ def measure(port, seconds, slow_ms, client, move):
         "jpeg_kb_mean": nbytes / max(1, got) / 1024,
         "latency_client_ms_median": statistics.median(latencies) if latencies else None,
         "latency_server_ms_median": stats["latencyMs"],
-        "dropped_by_encoders": stats["dropped"],
+        "dropped_by_loop": dropped,
+        "render_call_ms_mean": stats["renderCallMs"],
+        "renderer_wall_fps": 1e3 / stats["renderCallMs"] if stats["renderCallMs"] else None,
         "unfinished_pixels_last": stats["unfinishedPixels"],
     }
 
@@ -126,7 +132,7 @@ def main():
         print(banner.strip(), flush=True)
         port = int(banner.split("http://127.0.0.1:")[1].split("/")[0])
         for slow in (0, 50):
-            r = measure(port, a.seconds, slow, f"bench{slow}", "0,0,0" if a.path != "free" else "0,0,1")
+            r = measure(port, a.seconds if not slow else min(a.seconds, 5.0), slow, f"bench{slow}", "0,0,0" if a.path != "free" else "0,0,1")
             r.update(scene=scene, scheduler=a.scheduler, width=a.width, height=a.height,
                      budget_ms=a.budget_ms or None, path=a.path, server=banner.strip())
             results.append(r)
@@ -144,12 +150,14 @@ def main():
     if a.out:
         with open(a.out, "w") as f:
             json.dump(results, f, indent=1)
-    print("| scene | client | delivered FPS | loop FPS | renderer FPS | delivered / renderer FPS | frames delivered / rendered | latency client / server ms | JPEG KB |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| scene | client | delivered FPS | loop FPS | renderer FPS (GPU-timed) | renderer FPS (wall, its call) | delivered / renderer GPU FPS | frames delivered / rendered | dropped by the loop | latency client / server ms | JPEG KB |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in results:
         print(f"| {r['scene']} | {'slow (50 ms)' if r['slow_client_ms'] else 'fast'} | "
               f"{r['delivered_fps']:.1f} | {r['loop_fps']:.1f} | {r['renderer_fps'] or 0:.1f} | "
+              f"{r['renderer_wall_fps'] or 0:.1f} | "
               f"{r['delivered_over_renderer_fps'] or 0:.3f} | {r['delivered_over_rendered']:.3f} | "
+              f"{r['dropped_by_loop']} | "
               f"{r['latency_client_ms_median'] or 0:.1f} / {r['latency_server_ms_median']:.1f} | "
               f"{r['jpeg_kb_mean']:.0f} |")
     return 0

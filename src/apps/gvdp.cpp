@@ -460,7 +460,9 @@ ServeOptions serveOptions(const ServeFlags& f) {
                                 text(f.height), text(f.budgetMs), f.path);
   loop.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   loop.quality = f.quality;
-  loop.encoders = std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / 4, 1, 4);
+  // Encoders: half the hardware threads, 1..8. On the H100 machine's 16, 4 of them dropped 10%
+  // of perlin's 168 frames a second (all busy, or finishing after a newer frame); 8 keep up.
+  loop.encoders = std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / 2, 1, 8);
   SequenceOptions check;
   check.scene = loop.view.scene;
   check.scheduler.backend = loop.backend;
