@@ -50,7 +50,7 @@ def measure(port, seconds, slow_ms, client, move):
             stop.wait(0.25)
 
     after, got, frame_ms, nbytes = 0, 0, [], 0
-    dropped_before = stats_now()["dropped"]
+    before = stats_now()
     # Warm up: frames for 3 s (the first pool fill), then the measured window.
     warm_end = time.perf_counter() + 3.0
     while time.perf_counter() < warm_end:
@@ -59,7 +59,8 @@ def measure(port, seconds, slow_ms, client, move):
             after = int(h["X-Frame"])
     thread = threading.Thread(target=inputs)
     thread.start()
-    first_seq, start = after, time.perf_counter()
+    before = stats_now()
+    start = time.perf_counter()
     end = start + seconds
     while time.perf_counter() < end:
         status, h, body = get(frames_conn, f"/api/frame?after={after}&client={client}")
@@ -76,23 +77,24 @@ def measure(port, seconds, slow_ms, client, move):
         frame_ms.append(float(h["X-Frame-Ms"]))
         if slow_ms:
             time.sleep(slow_ms / 1e3)
+    stats = stats_now()
     elapsed = time.perf_counter() - start
     stop.set()
     thread.join()
-    stats = stats_now()
-    dropped = stats["dropped"] - dropped_before
-    rendered = after - first_seq
-    # The renderer's own frame times (GPU-timed on cuda) of the frames rendered in the window.
-    window = stats["frameMsHistory"][-min(rendered, len(stats["frameMsHistory"])):] if rendered else []
-    renderer_ms = statistics.mean(window) if window else None
+    dropped = stats["dropped"] - before["dropped"]
+    # The renderer's own times over the frames the loop rendered in the window (GPU-timed on
+    # cuda; the wall time of its call).
+    frames = stats["frame"] - before["frame"]
+    renderer_ms = (stats["frameMsTotal"] - before["frameMsTotal"]) / max(1, frames)
+    call_ms = (stats["renderCallMsTotal"] - before["renderCallMsTotal"]) / max(1, frames)
     return {
         "slow_client_ms": slow_ms,
         "seconds": elapsed,
         "frames_delivered": got,
-        "frames_rendered": rendered,
+        "frames_rendered": frames,
         "delivered_fps": got / elapsed,
-        "loop_fps": rendered / elapsed,
-        "delivered_over_rendered": got / max(1, rendered),
+        "loop_fps": frames / elapsed,
+        "delivered_over_rendered": got / max(1, frames),
         "renderer_frame_ms_mean": renderer_ms,
         "renderer_fps": 1e3 / renderer_ms if renderer_ms else None,
         "delivered_over_renderer_fps": got / elapsed * renderer_ms / 1e3 if renderer_ms else None,
@@ -100,8 +102,8 @@ def measure(port, seconds, slow_ms, client, move):
         "latency_client_ms_median": statistics.median(latencies) if latencies else None,
         "latency_server_ms_median": stats["latencyMs"],
         "dropped_by_loop": dropped,
-        "render_call_ms_mean": stats["renderCallMs"],
-        "renderer_wall_fps": 1e3 / stats["renderCallMs"] if stats["renderCallMs"] else None,
+        "render_call_ms_mean": call_ms,
+        "renderer_wall_fps": 1e3 / call_ms if call_ms else None,
         "unfinished_pixels_last": stats["unfinishedPixels"],
     }
 

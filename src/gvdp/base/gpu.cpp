@@ -70,8 +70,11 @@ PinnedDownload::PinnedDownload(size_t bytes) : bytes_(bytes) {
   try {
     check(cudaMalloc(&device_, bytes), "cudaMalloc (download buffer)");
     check(cudaMallocHost(&host_, bytes), "cudaMallocHost (download buffer)");
+    // Waiters sleep rather than spin: several encoder threads wait on downloads at once, and
+    // spinning ones took the CPU and the driver from the render thread.
     cudaEvent_t e = nullptr;
-    check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
+    check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming | cudaEventBlockingSync),
+          "cudaEventCreate");
     event_ = e;
   } catch (...) {
     cudaFree(device_);

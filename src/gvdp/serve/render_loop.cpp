@@ -36,6 +36,12 @@ double median(std::deque<double> v) {
   return v[v.size() / 2];
 }
 
+double mean(const std::deque<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
 template <class T>
 void keepLast(std::deque<T>& d, size_t n) {
   while (d.size() > n) d.pop_front();
@@ -185,6 +191,7 @@ void RenderLoop::release(Job& job) {
 
 // One frame: called and returns with the lock held; renders and encodes without it.
 void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
+  Clock::time_point begin = Clock::now();
   // The frame's buffer. On the GPU: a free download, else the one of the frame waiting for an
   // encoder (that frame is dropped), else wait for an encoder to finish one.
   Image image;
@@ -242,7 +249,9 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   } else {
     stats = renderer_->render(camera_.pose(), image);
   }
-  double callMs = 1e3 * seconds(Clock::now() - callStart);
+  Clock::time_point callEnd = Clock::now();
+  double callMs = 1e3 * seconds(callEnd - callStart);
+  double beforeMs = 1e3 * seconds(callStart - begin);
   std::string png;
   if (withTimeline) {
     renderer_->recordTimeline(false);
@@ -277,6 +286,12 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   keepLast(frameMs_, HISTORY);
   callMs_.push_back(callMs);
   keepLast(callMs_, HISTORY);
+  frameMsTotal_ += stats.ms;
+  callMsTotal_ += callMs;
+  beforeMs_.push_back(beforeMs);
+  keepLast(beforeMs_, HISTORY);
+  afterMs_.push_back(1e3 * seconds(Clock::now() - callEnd));
+  keepLast(afterMs_, HISTORY);
   last_ = stats;
   lastPose_ = camera_.pose();
   if (withTimeline) {
@@ -299,6 +314,7 @@ void RenderLoop::encoderThread() {
     jobs_.wait(lock, [&] { return stop_ || pending_; });
     if (stop_) return;
     std::unique_ptr<Job> job = std::move(pending_);
+    encoding_.insert(job->seq);
     lock.unlock();
     auto frame = std::make_shared<LiveFrame>();
     frame->seq = job->seq;
@@ -314,21 +330,25 @@ void RenderLoop::encoderThread() {
       frame->jpeg = encoder.encode(job->image, options_.quality);
     }
     lock.lock();
+    encoding_.erase(job->seq);
+    ready_[job->seq] = {std::move(frame), job->inputTime};
+    release(*job);
+    // Frames are published in order: one that another encoder finished first waits for it
+    // (dropping it would lose a frame the loop rendered; showing it later would go back).
     Clock::time_point now = Clock::now();
-    if (!newest_ || frame->seq > newest_->seq) {
-      newest_ = std::move(frame);
-      encodeTimes_.push_back(now);
-      keepLast(encodeTimes_, 4096);
-      if (job->inputSeq > latencySeq_) {
-        latencySeq_ = job->inputSeq;
-        latencyMs_.push_back(1e3 * seconds(now - job->inputTime));
+    while (!ready_.empty() && (encoding_.empty() || ready_.begin()->first < *encoding_.begin())) {
+      Ready r = std::move(ready_.begin()->second);
+      ready_.erase(ready_.begin());
+      if (r.frame->inputSeq > latencySeq_) {
+        latencySeq_ = r.frame->inputSeq;
+        latencyMs_.push_back(1e3 * seconds(now - r.inputTime));
         keepLast(latencyMs_, LATENCIES);
       }
-      frames_.notify_all();
-    } else {
-      ++dropped_;
+      newest_ = std::move(r.frame);
+      encodeTimes_.push_back(now);
+      keepLast(encodeTimes_, 4096);
     }
-    release(*job);
+    frames_.notify_all();
   }
 }
 
@@ -351,10 +371,14 @@ nlohmann::json RenderLoop::stats() const {
   j["dropped"] = dropped_;
   j["frameMs"] = last_.ms;
   j["frameMsHistory"] = std::vector<double>(frameMs_.begin(), frameMs_.end());
-  // The wall time of the renderer's call (frame, image to its buffer, counters), mean of the last.
-  double calls = 0.0;
-  for (double ms : callMs_) calls += ms;
-  j["renderCallMs"] = callMs_.empty() ? 0.0 : calls / static_cast<double>(callMs_.size());
+  // The loop's wall time per frame, means over the last frames: before the renderer's call (a
+  // buffer, the view, the camera), the call (frame, image to its buffer, counters), after it.
+  j["beforeCallMs"] = mean(beforeMs_);
+  j["renderCallMs"] = mean(callMs_);
+  j["afterCallMs"] = mean(afterMs_);
+  // Sums over every frame so far: a client's window takes their differences.
+  j["frameMsTotal"] = frameMsTotal_;
+  j["renderCallMsTotal"] = callMsTotal_;
   j["latencyMs"] = median(latencyMs_);  // input received to its first frame encoded, median
   j["bricksProduced"] = last_.cache.produced;
   j["poolResident"] = last_.cache.resident;

@@ -1,17 +1,19 @@
 // The viewer's render loop (`gvdp serve`): one thread renders frames of a flown camera with the
 // public Renderer while any client asks for them, and hands each image to JPEG encoder threads;
 // a client always gets the newest encoded frame. Frames are dropped, never queued: a frame whose
-// encoding has not started when the next one is rendered is replaced by it, and clients slower
-// than the loop skip frames.
+// encoding has not started when the next one is rendered is replaced by it (every encoder busy),
+// and clients slower than the loop skip frames. Encoded frames are published in order.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -87,6 +89,10 @@ class RenderLoop {
     int download = -1;  // cuda backend: downloads_[download]
   };
   void release(Job& job);
+  struct Ready {
+    std::shared_ptr<const LiveFrame> frame;
+    Clock::time_point inputTime;
+  };
   void renderThread();
   void encoderThread();
   void renderOne(std::unique_lock<std::mutex>& lock);
@@ -131,9 +137,12 @@ class RenderLoop {
   std::vector<Image> freeImages_;
   std::vector<int> freeDownloads_;
   std::shared_ptr<const LiveFrame> newest_;
+  std::set<uint64_t> encoding_;      // frames encoders have taken
+  std::map<uint64_t, Ready> ready_;  // encoded, waiting for an older frame's encoding
   uint64_t rendered_ = 0, dropped_ = 0, latencySeq_ = 0;
+  double frameMsTotal_ = 0, callMsTotal_ = 0;
   std::deque<Clock::time_point> renderTimes_, encodeTimes_, serveTimes_;
-  std::deque<double> frameMs_, callMs_, latencyMs_;
+  std::deque<double> frameMs_, callMs_, beforeMs_, afterMs_, latencyMs_;
   FrameStats last_;
   CameraPose lastPose_{};
 
