@@ -128,17 +128,20 @@ class Browser:
                 return m.get("result", {})
             self.events.append(m)
 
-    def evaluate(self, expression):
+    def evaluate(self, expression, errors_are_false=False):
         r = self.call("Runtime.evaluate", expression=expression, returnByValue=True,
                       awaitPromise=True)
         if "exceptionDetails" in r:
+            if errors_are_false:
+                return False
             fail(f"page error in {expression!r}: {r['exceptionDetails']}")
         return r["result"].get("value")
 
     def wait_for(self, expression, what, seconds=90):
         end = time.time() + seconds
         while time.time() < end:
-            if self.evaluate(expression):
+            # The page may still be loading (no element yet): that is not ready, not an error.
+            if self.evaluate(expression, errors_are_false=True):
                 return
             time.sleep(0.2)
         fail(f"timed out waiting for {what} ({expression})")
@@ -221,6 +224,9 @@ def main():
         for step in range(1, 11):
             browser.mouse("mouseMoved", cx + 12 * step, cy, 1)
         browser.mouse("mouseReleased", cx + 120, cy)
+        # The seat is the page's while it sends input (and 3 s after).
+        browser.wait_for("document.getElementById('role').textContent.includes('you drive')",
+                         "the page saying it drives", seconds=2.5)
         frame_before = stats0["frame"]
         browser.wait_for(f"fetch('/api/stats').then(r => r.json()).then(s => s.frame > {frame_before} + 3)",
                          "frames after the input")
@@ -231,8 +237,6 @@ def main():
         check(moved > 0.5, f"W moved the camera {moved:.2f} units")
         check(abs(c1["yaw"] - c0["yaw"]) > 0.2, f"the drag turned the camera {c1['yaw'] - c0['yaw']:+.2f} rad")
         check(stats1["unfinishedPixels"] == 0, "no unfinished pixels")
-        browser.wait_for("document.getElementById('role').textContent.includes('you drive')",
-                         "the page saying it drives")
         shot_b = browser.screenshot()
         pixels_b = region(shot_b, rect)
         changed = sum(1 for a, b in zip(pixels_a, pixels_b) if a != b) / max(1, len(pixels_a))
@@ -241,8 +245,11 @@ def main():
         for word in ("FPS", "bricks produced", "pool", "unfinished", "coarser", "input to frame"):
             check(word in overlay, f"the overlay shows '{word}'")
 
-        # A second client watches: its input is refused while the page drives.
+        # A second client watches: its input is refused while the page drives (holding a key).
+        browser.key("keyDown", "KeyD", "d", 68)
+        time.sleep(0.5)
         status, body = http(base + "/api/input?client=other&move=1,0,0", "POST")
+        browser.key("keyUp", "KeyD", "d", 68)
         check(status == 409, f"a second client's input is refused while the page drives ({status} {body.decode().strip()})")
 
         # The timeline button shows the PNG of a frame's timeline.
