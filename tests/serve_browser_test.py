@@ -260,12 +260,14 @@ def main():
         shot_timeline = browser.screenshot()
         browser.evaluate("document.getElementById('timelinePanel').click()")
 
-        # Settings from the page: another scene and a budget.
+        # Settings from the page: another scene, a budget and a camera path.
         browser.evaluate("document.getElementById('scene').value = 'aligned-spheres';"
                          "document.getElementById('budget').value = '40';"
+                         "document.getElementById('path').value = 'forward';"
                          "document.getElementById('apply').click()")
         browser.wait_for("fetch('/api/stats').then(r => r.json()).then(s => s.scene === "
-                         "'aligned-spheres' && s.budgetMs === 40)", "the scene chosen on the page")
+                         "'aligned-spheres' && s.budgetMs === 40 && s.path === 'forward')",
+                         "the scene, budget and camera path chosen on the page")
 
         # Malformed requests: 400 or 404 with one line, and the server still serves.
         for path, method, want in [

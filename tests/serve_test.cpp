@@ -74,7 +74,7 @@ TEST(ServeParams, ViewSettingsNameTheBadValue) {
   auto parse = [&](std::optional<std::string> scene, std::optional<std::string> sched,
                    std::optional<std::string> w, std::optional<std::string> budget,
                    Backend b = Backend::Cpu) {
-    return parseViewSettings(cur, b, scene, sched, w, std::nullopt, budget);
+    return parseViewSettings(cur, b, {scene, sched, w, std::nullopt, budget, std::nullopt});
   };
   ViewSettings v = parse("forest", "dp", "640", "8");
   EXPECT_EQ(v.scene, "forest");
@@ -99,11 +99,15 @@ TEST(ServeParams, ViewSettingsNameTheBadValue) {
   refused([&] { parse({}, {}, "100000", {}); }, "'100000'");
   refused([&] { parse({}, {}, {}, "-1"); }, "'-1'");
   refused([&] { parse({}, {}, {}, "1001"); }, "'1001'");
-  EXPECT_EQ(parseViewSettings(cur, Backend::Cpu, {}, {}, {}, {}, {}, "walkthrough").path,
-            Movement::Walkthrough);
-  EXPECT_FALSE(parseViewSettings(v, Backend::Cpu, {}, {}, {}, {}, {}, "free").path);
-  refused([&] { parseViewSettings(cur, Backend::Cpu, {}, {}, {}, {}, {}, "moonwalk"); },
-          "'moonwalk'");
+  ViewParams onPath;
+  onPath.path = "walkthrough";
+  EXPECT_EQ(parseViewSettings(cur, Backend::Cpu, onPath).path, Movement::Walkthrough);
+  EXPECT_FALSE(parseViewSettings(v, Backend::Cpu, ViewParams{{}, {}, {}, {}, {}, "free"}).path);
+  refused(
+      [&] {
+        parseViewSettings(cur, Backend::Cpu, ViewParams{{}, {}, {}, {}, {}, "moonwalk"});
+      },
+      "'moonwalk'");
 }
 
 TEST(ServeCamera, FliesInTheCamerasFrameAndClampsPitch) {
@@ -360,11 +364,17 @@ TEST(ServeHttp, AnswersThePageTheApiAndBadRequests) {
   auto bv = http.Post("/api/view?client=b&width=64", "", "text/plain");
   ASSERT_TRUE(bv);
   EXPECT_EQ(bv->status, 409);
+  auto path = http.Post("/api/view?client=a&path=forward&budget=25", "", "text/plain");
+  ASSERT_TRUE(path);
+  EXPECT_EQ(path->status, 200) << path->body;
+  EXPECT_EQ(nlohmann::json::parse(path->body)["path"], "forward");
   auto stats = http.Get("/api/stats?client=a");
   ASSERT_TRUE(stats);
   nlohmann::json s = nlohmann::json::parse(stats->body);
   EXPECT_TRUE(s["driving"].get<bool>());
   EXPECT_EQ(s["width"], 48);
+  EXPECT_EQ(s["path"], "forward");
+  EXPECT_EQ(s["budgetMs"], 25.0);
   uint64_t seen = std::stoull(f->get_header_value("X-Frame"));
   auto again = frame(seen);
   ASSERT_TRUE(again);

@@ -456,8 +456,9 @@ ServeOptions serveOptions(const ServeFlags& f) {
   auto text = [](const auto& v) {
     return v ? std::optional<std::string>(std::to_string(*v)) : std::nullopt;
   };
-  loop.view = parseViewSettings(first, loop.backend, f.scene, f.scheduler, text(f.width),
-                                text(f.height), text(f.budgetMs), f.path);
+  loop.view = parseViewSettings(
+      first, loop.backend,
+      {f.scene, f.scheduler, text(f.width), text(f.height), text(f.budgetMs), f.path});
   loop.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   loop.quality = f.quality;
   // Encoders: half the hardware threads, 1..8. On the H100 machine's 16, 4 of them dropped 10%

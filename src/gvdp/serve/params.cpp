@@ -54,13 +54,8 @@ std::string parseClientId(std::string_view text) {
   return std::string(text);
 }
 
-ViewSettings parseViewSettings(const ViewSettings& current, Backend backend,
-                               const std::optional<std::string>& scene,
-                               const std::optional<std::string>& scheduler,
-                               const std::optional<std::string>& width,
-                               const std::optional<std::string>& height,
-                               const std::optional<std::string>& budget,
-                               const std::optional<std::string>& path) {
+ViewSettings parseViewSettings(const ViewSettings& current, Backend backend, const ViewParams& p) {
+  const auto& [scene, scheduler, width, height, budget, path] = p;
   ViewSettings s = current;
   if (scene) s.scene = std::string(findScene(*scene).name);
   if (scheduler) {

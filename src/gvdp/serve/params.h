@@ -40,15 +40,13 @@ Vec3f parseVec3Param(std::string_view name, std::string_view text, float lo, flo
 // A client's id: 1..32 letters, digits, '-' or '_'.
 std::string parseClientId(std::string_view text);
 
-// `current` with the parameters a request gives replaced (name -> text, absent: nullopt):
-// scene, scheduler (not direct: the viewer shows the cached renderer), width, height, budget
-// ("off" or milliseconds), path ("free" or a movement). Scheduler graph needs the cuda backend.
-ViewSettings parseViewSettings(const ViewSettings& current, Backend backend,
-                               const std::optional<std::string>& scene,
-                               const std::optional<std::string>& scheduler,
-                               const std::optional<std::string>& width,
-                               const std::optional<std::string>& height,
-                               const std::optional<std::string>& budget,
-                               const std::optional<std::string>& path = std::nullopt);
+// A view's parameters as a request gives them (absent: nullopt): scene, scheduler (not direct:
+// the viewer shows a cached renderer; graph needs the cuda backend), width, height, budget
+// ("off" or milliseconds), path ("free" or a movement).
+struct ViewParams {
+  std::optional<std::string> scene, scheduler, width, height, budget, path;
+};
+// `current` with the parameters given replaced.
+ViewSettings parseViewSettings(const ViewSettings& current, Backend backend, const ViewParams& p);
 
 }  // namespace gvdp::detail

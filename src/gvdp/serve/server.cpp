@@ -148,10 +148,10 @@ void ViewerServer::Impl::routes() {
             guarded({"client", "scene", "scheduler", "width", "height", "budget", "path"},
                     [this](const Request& req, Response& res) {
                       std::string client = requiredClient(req);
-                      ViewSettings v =
-                          parseViewSettings(loop.view(), options.loop.backend, param(req, "scene"),
-                                            param(req, "scheduler"), param(req, "width"),
-                                            param(req, "height"), param(req, "budget"));
+                      ViewSettings v = parseViewSettings(
+                          loop.view(), options.loop.backend,
+                          {param(req, "scene"), param(req, "scheduler"), param(req, "width"),
+                           param(req, "height"), param(req, "budget"), param(req, "path")});
                       if (!seat.claim(client, DriverSeat::Clock::now()))
                         return reply(res, 409, "another client drives the camera; watching");
                       loop.setView(v);
