@@ -389,6 +389,22 @@ TEST(ServeHttp, AnswersThePageTheApiAndBadRequests) {
   serving.join();
 }
 
+TEST(ServeHttp, APortInUseIsRefusedNotShared) {
+  ServeOptions o;
+  o.port = 0;
+  o.loop = smallLoop();
+  ViewerServer first(o);
+  o.port = first.port();
+  try {
+    ViewerServer second(o);
+    FAIL() << "a second server listened on port " << o.port;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot listen on 127.0.0.1:" + std::to_string(o.port)),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ServeHttp, AnAddressItCannotListenOnIsOneLine) {
   ServeOptions o;
   o.host = "256.1.2.3";

@@ -2,6 +2,8 @@
 
 #include <httplib.h>
 
+#include <sys/socket.h>
+
 #include <cerrno>
 #include <cstring>
 #include <functional>
@@ -188,6 +190,12 @@ ViewerServer::ViewerServer(const ServeOptions& options) : impl_(std::make_unique
   // A frame's headers and body go out at once: with Nagle's algorithm the body waited for the
   // client's delayed ACK, 40 ms a frame (the H100 run delivered 22.7 of 460 FPS before this).
   http.set_tcp_nodelay(true);
+  // SO_REUSEADDR (a restart binds at once) but not httplib's default SO_REUSEPORT, with which a
+  // second server on the same port bound too and the kernel split the clients between them.
+  http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   http.set_keep_alive_max_count(1000000);
   http.set_keep_alive_timeout(2);
   http.set_default_headers({{"Cache-Control", "no-store"}, {"X-Content-Type-Options", "nosniff"}});
