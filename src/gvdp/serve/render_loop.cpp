@@ -36,12 +36,6 @@ double median(std::deque<double> v) {
   return v[v.size() / 2];
 }
 
-double mean(const std::deque<double>& v) {
-  double sum = 0.0;
-  for (double x : v) sum += x;
-  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
-}
-
 template <class T>
 void keepLast(std::deque<T>& d, size_t n) {
   while (d.size() > n) d.pop_front();
@@ -191,7 +185,6 @@ void RenderLoop::release(Job& job) {
 
 // One frame: called and returns with the lock held; renders and encodes without it.
 void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
-  Clock::time_point begin = Clock::now();
   // The frame's buffer. On the GPU: a free download, else the one of the frame waiting for an
   // encoder (that frame is dropped), else wait for an encoder to finish one.
   Image image;
@@ -249,9 +242,7 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   } else {
     stats = renderer_->render(camera_.pose(), image);
   }
-  Clock::time_point callEnd = Clock::now();
-  double callMs = 1e3 * seconds(callEnd - callStart);
-  double beforeMs = 1e3 * seconds(callStart - begin);
+  double callMs = 1e3 * seconds(Clock::now() - callStart);
   std::string png;
   if (withTimeline) {
     renderer_->recordTimeline(false);
@@ -284,14 +275,8 @@ void RenderLoop::renderOne(std::unique_lock<std::mutex>& lock) {
   keepLast(renderTimes_, 4096);
   frameMs_.push_back(stats.ms);
   keepLast(frameMs_, HISTORY);
-  callMs_.push_back(callMs);
-  keepLast(callMs_, HISTORY);
   frameMsTotal_ += stats.ms;
   callMsTotal_ += callMs;
-  beforeMs_.push_back(beforeMs);
-  keepLast(beforeMs_, HISTORY);
-  afterMs_.push_back(1e3 * seconds(Clock::now() - callEnd));
-  keepLast(afterMs_, HISTORY);
   last_ = stats;
   lastPose_ = camera_.pose();
   if (withTimeline) {
@@ -371,12 +356,8 @@ nlohmann::json RenderLoop::stats() const {
   j["dropped"] = dropped_;
   j["frameMs"] = last_.ms;
   j["frameMsHistory"] = std::vector<double>(frameMs_.begin(), frameMs_.end());
-  // The loop's wall time per frame, means over the last frames: before the renderer's call (a
-  // buffer, the view, the camera), the call (frame, image to its buffer, counters), after it.
-  j["beforeCallMs"] = mean(beforeMs_);
-  j["renderCallMs"] = mean(callMs_);
-  j["afterCallMs"] = mean(afterMs_);
-  // Sums over every frame so far: a client's window takes their differences.
+  // Sums over every frame so far (the renderer's frame times; the wall time of its call: frame,
+  // image to its buffer, counters): a client's window takes their differences.
   j["frameMsTotal"] = frameMsTotal_;
   j["renderCallMsTotal"] = callMsTotal_;
   j["latencyMs"] = median(latencyMs_);  // input received to its first frame encoded, median

@@ -142,7 +142,7 @@ class RenderLoop {
   uint64_t rendered_ = 0, dropped_ = 0, latencySeq_ = 0;
   double frameMsTotal_ = 0, callMsTotal_ = 0;
   std::deque<Clock::time_point> renderTimes_, encodeTimes_, serveTimes_;
-  std::deque<double> frameMs_, callMs_, beforeMs_, afterMs_, latencyMs_;
+  std::deque<double> frameMs_, latencyMs_;
   FrameStats last_;
   CameraPose lastPose_{};
 
