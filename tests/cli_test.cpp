@@ -52,7 +52,12 @@ TEST(Cli, BadInputIsOneLineNamingTheValueWithStatus2) {
   expectInputError("render --backend cpu --width 0" + out, "--width 0");
   expectInputError("render --backend cpu --width -5" + out, "-5");
   expectInputError("render --backend cpu --height 100000" + out, "--height 100000");
-  expectInputError("render --backend cpu --width 16000 --height 16000" + out, "16000x16000");
+  expectInputError("render --backend cpu --width 30000 --height 30000" + out, "30000x30000");
+  expectInputError("render --backend cpu --tiles 0" + out, "--tiles '0'");
+  expectInputError("render --backend cpu --tiles lots" + out, "--tiles 'lots'");
+  expectInputError("render --backend cpu --tiles 257" + out, "--tiles '257'");
+  expectInputError("render --backend cpu --tiles off --width 4096 --height 4096" + out,
+                   "4096x4096 for --tiles off");
   expectInputError("render --backend cpu --frames 0" + out, "--frames 0");
   expectInputError("render --backend cpu --width abc" + out, "abc");
   expectInputError("render --backend cpu --origin 1,2" + out, "'1,2'");

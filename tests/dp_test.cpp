@@ -39,7 +39,7 @@ TEST(DpCpu, RefusedLaunchesDegradeNothingButAreCounted) {
 }
 
 TEST(DpCpu, TinyPoolDegradesButFinishesEveryPixel) {
-  Renders dp = renderRun("forest", {Backend::Cpu, SchedulerKind::Dp, 64}, 3, 96, 60);
+  Renders dp = test::schedulerRun("forest", {Backend::Cpu, SchedulerKind::Dp, 64}, 3, 96, 60);
   for (const FrameStats& s : dp.stats) {
     EXPECT_EQ(s.unfinishedPixels, 0);
     EXPECT_TRUE(s.degraded);
@@ -97,7 +97,8 @@ TEST_P(GpuDpTest, MatchesGpuSpBitForBitOnA20FrameWalkthrough) {
 
 TEST_P(GpuDpTest, TinyPoolFinishesEveryPixel) {
   GVDP_REQUIRE_GPU();
-  Renders a = renderRun(sceneName(GetParam()), {Backend::Cuda, SchedulerKind::Dp, 64}, 3, 320, 200);
+  Renders a = test::schedulerRun(sceneName(GetParam()), {Backend::Cuda, SchedulerKind::Dp, 64}, 3,
+                                 320, 200);
   for (const FrameStats& s : a.stats) {
     EXPECT_EQ(s.unfinishedPixels, 0);
     EXPECT_TRUE(s.degraded);

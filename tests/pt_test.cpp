@@ -78,7 +78,7 @@ TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {
 }
 
 TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
-  Renders pt = renderRun("forest", {Backend::Cpu, SchedulerKind::Pt, 64}, 3, 96, 60);
+  Renders pt = test::schedulerRun("forest", {Backend::Cpu, SchedulerKind::Pt, 64}, 3, 96, 60);
   for (const FrameStats& s : pt.stats) {
     EXPECT_EQ(s.unfinishedPixels, 0);
     EXPECT_TRUE(s.degraded);
@@ -175,7 +175,7 @@ TEST_P(GpuPtTest, PtAndGraphMatchGpuSpBitForBitOnA20FrameWalkthrough) {
 TEST_P(GpuPtTest, TinyPoolFinishesEveryPixel) {
   GVDP_REQUIRE_GPU();
   for (SchedulerKind kind : {SchedulerKind::Pt, SchedulerKind::Graph}) {
-    Renders a = renderRun(sceneName(GetParam()), {Backend::Cuda, kind, 64}, 3, 320, 200);
+    Renders a = test::schedulerRun(sceneName(GetParam()), {Backend::Cuda, kind, 64}, 3, 320, 200);
     for (const FrameStats& s : a.stats) EXPECT_EQ(s.unfinishedPixels, 0);
   }
 }

@@ -44,7 +44,7 @@ TEST_P(SpTest, IsDeterministic) {
 
 // A pool far smaller than a frame's working set: every frame completes, degraded.
 TEST_P(SpTest, TinyPoolDegradesButFinishesEveryPixel) {
-  Renders r = renderRun(scene(), SchedulerKind::Sp, Backend::Cpu, 3, 96, 60, 64);
+  Renders r = test::schedulerRun(scene(), {Backend::Cpu, SchedulerKind::Sp, 64}, 3, 96, 60);
   for (const FrameStats& s : r.stats) {
     EXPECT_EQ(s.unfinishedPixels, 0);
     EXPECT_TRUE(s.degraded);
@@ -101,8 +101,8 @@ TEST_P(GpuSpTest, MatchesCpuSp) {
 
 TEST_P(GpuSpTest, TinyPoolFinishesEveryPixel) {
   GVDP_REQUIRE_GPU();
-  Renders r = renderRun(std::string(allScenes()[GetParam()].name), SchedulerKind::Sp, Backend::Cuda,
-                        3, 320, 200, 64);
+  Renders r = test::schedulerRun(std::string(allScenes()[GetParam()].name),
+                                 {Backend::Cuda, SchedulerKind::Sp, 64}, 3, 320, 200);
   for (const FrameStats& s : r.stats) {
     EXPECT_EQ(s.unfinishedPixels, 0);
     EXPECT_TRUE(s.degraded);

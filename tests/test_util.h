@@ -73,6 +73,24 @@ inline Renders renderRun(const std::string& scene, SchedulerOptions s, int frame
   return r;
 }
 
+// The same frames rendered by the scheduler alone (no tiles, no retries): its own degraded
+// frames when the pool is too small.
+inline Renders schedulerRun(const std::string& scene, SchedulerOptions s, int frames, int w,
+                            int h) {
+  SequenceOptions o;
+  o.scene = scene;
+  o.width = w;
+  o.height = h;
+  o.scheduler = s;
+  std::unique_ptr<Scheduler> scheduler = schedulerFor(o);
+  Renders r;
+  for (int f = 0; f < frames; ++f) {
+    r.images.emplace_back();
+    r.stats.push_back(scheduler->render(frameOf(o, f), r.images.back()));
+  }
+  return r;
+}
+
 inline std::string sceneName(int i) {
   return std::string(allScenes()[i].name);
 }

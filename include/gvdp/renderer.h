@@ -17,6 +17,7 @@
 #include "gvdp/base/error.h"  // Error, InputError
 #include "gvdp/base/image.h"
 #include "gvdp/sched/scheduler.h"
+#include "gvdp/tiles/tiled_frame.h"
 
 struct CUstream_st;  // cudaStream_t is CUstream_st*
 
@@ -40,12 +41,17 @@ using detail::psnr;
 using detail::SchedulerKind;
 using detail::schedulerName;
 using detail::SchedulerOptions;
+using detail::TileOptions;
+using detail::TileProgress;
 
 struct RendererOptions {
   SchedulerOptions scheduler;  // backend, scheduler, pool size, dp's pending launches, timeline
   int width = 160, height = 100;
   int levels = DEFAULT_LEVELS;  // clipmap levels: the voxel size doubles per level
   float fovDegrees = DEFAULT_FOV_DEGREES;
+  // Tiled frames (tiles/tiled_frame.h): auto by default, so that a frame whose bricks do not fit
+  // the pool is rendered exactly, tile by tile, and one of any size in bounded ray memory.
+  TileOptions tiles;
 };
 
 // Throws InputError naming the first bad value.
@@ -67,12 +73,16 @@ class Renderer {
   // The world's finest voxel size.
   float voxelSize0() const { return voxelSize0_; }
 
-  // Renders the next frame of the sequence from `pose` into a host image (resized to fit).
+  // Renders the next frame of the sequence from `pose` into a host image (resized to fit), as
+  // tiles where options().tiles says.
   FrameStats render(const CameraPose& pose, Image& out);
   // The same into `devicePixels` (width * height RGBA8 words of device memory), the copy
-  // enqueued on `stream` (cuda backend). The renderer works on a stream of its own and has
-  // finished the frame when this returns; its next frame waits for the copy.
+  // enqueued on `stream` (cuda backend), in one tile (a frame that overflows the pool degrades).
+  // The renderer works on a stream of its own and has finished the frame when this returns; its
+  // next frame waits for the copy.
   FrameStats render(const CameraPose& pose, uint32_t* devicePixels, CUstream_st* stream);
+  // Called after each tile of a tiled frame (a progress bar for large stills).
+  void onTile(TileProgress progress) { tileProgress_ = std::move(progress); }
   // Records the GPU-cores timeline (profile/) of the following frames into
   // FrameStats::timeline, until called again with false.
   void recordTimeline(bool on);
@@ -87,6 +97,7 @@ class Renderer {
   RendererOptions options_;
   float voxelSize0_;
   std::unique_ptr<detail::Scheduler> scheduler_;
+  TileProgress tileProgress_;
   int frames_ = 0;
 };
 

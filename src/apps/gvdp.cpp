@@ -2,6 +2,7 @@
 // Library code throws; this is the one place that turns an exception into a message and an
 // exit status: 2 for bad input, 1 for internal failures.
 #include <pthread.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -46,7 +47,7 @@ constexpr int64_t MAX_POOL_MB = 190000;
 // Numbers left unset take the backend's default.
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
-  std::string origin = "0,0,0", out = "out", timeline, video;
+  std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto";
   std::optional<int> frames, width, height;
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
@@ -87,6 +88,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
   cmd->add_option("--levels", f.levels, "clipmap levels (voxel size doubles per level)");
   cmd->add_option("--fov", f.fov, "horizontal field of view, degrees");
   cmd->add_option("--origin", f.origin, "x,y,z added to the scene's start position");
+  cmd->add_option("--tiles", f.tiles,
+                  "auto (default: one tile while the frame's bricks fit the pool and its rays "
+                  "the payload, else exact tiles), off (a frame that overflows degrades) or N "
+                  "(an N x N grid)");
   if (timelineCommand) return;
   cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
   cmd->add_option("--timeline", f.timeline,
@@ -185,6 +190,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
   o.origin = parseVector(f.origin, "--origin");
+  o.tiles.mode = parseTileMode(f.tiles, &o.tiles.grid);
   o.scheduler.timeline = !f.timeline.empty();
   o.scheduler = resolvedOptions(o.scheduler);
   validate(o);
@@ -217,6 +223,26 @@ void printMemoryReport(const MemoryReport& memory) {
   std::printf(" total %.1f MB\n", static_cast<double>(memoryTotal(memory)) / 1e6);
 }
 
+// A tiled frame's progress on stderr: a bar redrawn in place on a terminal, else a line per
+// tenth of the tiles known.
+struct TileBar {
+  int lastTenth = -1;
+  void operator()(int done, int known) {
+    if (known <= 1) return;
+    int tenth = 10 * done / known;
+    if (isatty(2)) {
+      char bar[21];
+      int filled = 20 * done / known;
+      for (int i = 0; i < 20; ++i) bar[i] = i < filled ? '#' : '.';
+      bar[20] = 0;
+      std::fprintf(stderr, "\r  tiles [%s] %d / %d%s", bar, done, known, done == known ? "\n" : "");
+    } else if (tenth != lastTenth) {
+      std::fprintf(stderr, "  tiles %d / %d\n", done, known);
+    }
+    lastTenth = done == known ? -1 : tenth;
+  }
+};
+
 int runRender(const RenderFlags& flags) {
   SequenceOptions o = toOptions(flags);
   GVDP_INPUT_CHECK(flags.videoFps >= 1 && flags.videoFps <= 240, "bad --video-fps ", flags.videoFps,
@@ -234,30 +260,37 @@ int runRender(const RenderFlags& flags) {
                std::string(schedulerName(o.scheduler.kind)).c_str(),
                o.scheduler.backend == Backend::Cuda ? cudaDeviceSummary().c_str() : "cpu");
   std::vector<FrameStats> frames;
-  MemoryReport memory = renderSequence(o, [&](const Image& image, const FrameStats& s) {
-    char name[32];
-    std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
-    writePng(image, dir + name);
-    if (video) video->add(image);
-    if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
-    frames.push_back(s);
-    std::printf("frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s%s\n",
-                s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
-                static_cast<unsigned long long>(s.cache.produced),
-                static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "",
-                s.cache.coarser ? ("  coarser " + std::to_string(s.cache.coarser)).c_str() : "");
-    if (s.launches && o.scheduler.kind == SchedulerKind::Pt)
-      std::printf("           tasks %llu  relaunched rays %llu\n",
-                  static_cast<unsigned long long>(s.launches),
-                  static_cast<unsigned long long>(s.relaunchedRays));
-    else if (s.launches)
-      std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
-                  static_cast<unsigned long long>(s.launches),
-                  static_cast<unsigned long long>(s.launchFailures),
-                  static_cast<unsigned long long>(s.deferred),
-                  static_cast<long long>(s.sweptPixels));
-    std::fflush(stdout);
-  });
+  MemoryReport memory = renderSequence(
+      o,
+      [&](const Image& image, const FrameStats& s) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
+        writePng(image, dir + name);
+        if (video) video->add(image);
+        if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
+        frames.push_back(s);
+        std::printf(
+            "frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s%s\n",
+            s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
+            static_cast<unsigned long long>(s.cache.produced),
+            static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "",
+            s.cache.coarser ? ("  coarser " + std::to_string(s.cache.coarser)).c_str() : "");
+        if (s.launches && o.scheduler.kind == SchedulerKind::Pt)
+          std::printf("           tasks %llu  relaunched rays %llu\n",
+                      static_cast<unsigned long long>(s.launches),
+                      static_cast<unsigned long long>(s.relaunchedRays));
+        else if (s.launches)
+          std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
+                      static_cast<unsigned long long>(s.launches),
+                      static_cast<unsigned long long>(s.launchFailures),
+                      static_cast<unsigned long long>(s.deferred),
+                      static_cast<long long>(s.sweptPixels));
+        if (s.tiles > 1 || s.tileSplits || s.lodBias)
+          std::printf("           tiles %d  split on overflow %d  lod bias %d\n", s.tiles,
+                      s.tileSplits, s.lodBias);
+        std::fflush(stdout);
+      },
+      TileBar{});
   writeStatsJson(dir + "/stats.json", o, frames, memory);
   if (video)
     std::printf("wrote %s (%d frames at %d FPS)\n", flags.video.c_str(), video->close(),

@@ -11,12 +11,19 @@ namespace gvdp {
 using namespace detail;
 
 void validate(const RendererOptions& o) {
-  GVDP_INPUT_CHECK(o.width >= 8 && o.width <= 16384, "bad --width ", o.width,
-                   " (expected 8..16384)");
-  GVDP_INPUT_CHECK(o.height >= 8 && o.height <= 16384, "bad --height ", o.height,
-                   " (expected 8..16384)");
-  GVDP_INPUT_CHECK(static_cast<int64_t>(o.width) * o.height <= 64ll << 20, "bad size ", o.width,
-                   "x", o.height, " (at most 64 Mpixels)");
+  GVDP_INPUT_CHECK(o.width >= 8 && o.width <= MAX_IMAGE_SIDE, "bad --width ", o.width,
+                   " (expected 8..", MAX_IMAGE_SIDE, ")");
+  GVDP_INPUT_CHECK(o.height >= 8 && o.height <= MAX_IMAGE_SIDE, "bad --height ", o.height,
+                   " (expected 8..", MAX_IMAGE_SIDE, ")");
+  GVDP_INPUT_CHECK(static_cast<int64_t>(o.width) * o.height <= MAX_IMAGE_PIXELS, "bad size ",
+                   o.width, "x", o.height, " (at most ", MAX_IMAGE_PIXELS >> 20, " Mpixels)");
+  GVDP_INPUT_CHECK(o.tiles.maxTilePixels >= 64 && o.tiles.maxTilePixels <= MAX_IMAGE_PIXELS,
+                   "bad maximum tile size ", o.tiles.maxTilePixels, " pixels (expected 64..",
+                   MAX_IMAGE_PIXELS, ")");
+  GVDP_INPUT_CHECK(o.tiles.mode != TileOptions::Mode::Grid ||
+                       (o.tiles.grid >= 1 && o.tiles.grid <= MAX_TILE_GRID),
+                   "bad --tiles ", o.tiles.grid, " (expected 1..", MAX_TILE_GRID, ")");
+  initialTiles(o.width, o.height, o.tiles);  // refuses a frame too large for --tiles off
   GVDP_INPUT_CHECK(o.levels >= 1 && o.levels <= MAX_LEVELS, "bad --levels ", o.levels,
                    " (expected 1..", MAX_LEVELS, ")");
   GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
@@ -52,13 +59,17 @@ FrameSetup Renderer::frameAt(const CameraPose& pose) const {
 }
 
 FrameStats Renderer::render(const CameraPose& pose, Image& out) {
-  FrameStats stats = scheduler_->render(frameAt(pose), &out);
+  FrameStats stats = renderTiled(*scheduler_, frameAt(pose), out, options_.tiles, tileProgress_);
   ++frames_;
   return stats;
 }
 
 FrameStats Renderer::render(const CameraPose& pose, uint32_t* devicePixels, CUstream_st* stream) {
   GVDP_INPUT_CHECK(devicePixels, "render to device memory: null pixel pointer");
+  GVDP_INPUT_CHECK(
+      static_cast<int64_t>(options_.width) * options_.height <= options_.tiles.maxTilePixels,
+      "render to device memory: ", options_.width, "x", options_.height, " is over one tile's ",
+      options_.tiles.maxTilePixels, " pixels");
   FrameStats stats = scheduler_->render(frameAt(pose), nullptr);
   ++frames_;
   // The frame is finished on the renderer's stream; the next one waits for this copy.

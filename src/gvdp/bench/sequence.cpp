@@ -42,7 +42,15 @@ void checkResources(const SequenceOptions& o, const std::string& what) {
   requireBackend(o.scheduler.backend);
   std::optional<uint64_t> have = backendMemoryBytes(o.scheduler.backend);
   if (!have) return;  // nothing to compare with: the allocations will tell
-  uint64_t need = memoryTotal(memoryEstimate(o.scheduler, frameOf(o, 0)));
+  // The structures follow the largest tile's rays; the image is the whole frame's.
+  FrameSetup frame = frameOf(o, 0);
+  PixelTile largest{0, 0, 0, 0};
+  for (const PixelTile& t : initialTiles(frame.width, frame.height, o.tiles))
+    if (t.pixels() > largest.pixels()) largest = t;
+  uint64_t need = memoryTotal(memoryEstimate(
+      o.scheduler, tileOf(frame, largest.x, largest.y, largest.width, largest.height)));
+  if (largest.pixels() != frame.pixelCount())
+    need += static_cast<uint64_t>(frame.pixelCount()) * sizeof(uint32_t);
   bool cuda = o.scheduler.backend == Backend::Cuda;
   GVDP_INPUT_CHECK(need <= *have, describe(o, what), " needs ", gigabytes(need), " on the ",
                    backendName(o.scheduler.backend), " backend, which has ", gigabytes(*have),
@@ -61,10 +69,12 @@ FrameSetup frameOf(const SequenceOptions& o, int frame) {
 }
 
 MemoryReport renderSequence(const SequenceOptions& o,
-                            const std::function<void(const Image&, const FrameStats&)>& onFrame) {
+                            const std::function<void(const Image&, const FrameStats&)>& onFrame,
+                            const TileProgress& onTile) {
   validate(o);
   checkResources(o);
   std::unique_ptr<Renderer> renderer = makeRenderer(o.scene, o);
+  renderer->onTile(onTile);
   Image image;
   for (int f = 0; f < o.frames; ++f) {
     FrameStats stats = renderer->render(poseOf(o, f), image);

@@ -33,8 +33,9 @@ CameraPose poseOf(const SequenceOptions& options, int frame);
 FrameSetup frameOf(const SequenceOptions& options, int frame);
 
 // Renders every frame in order (after validate() and checkResources()); onFrame sees each image
-// and its stats. Returns the memory the scheduler held.
+// and its stats, `onTile` each tile of a tiled frame. Returns the memory the scheduler held.
 MemoryReport renderSequence(const SequenceOptions& options,
-                            const std::function<void(const Image&, const FrameStats&)>& onFrame);
+                            const std::function<void(const Image&, const FrameStats&)>& onFrame,
+                            const TileProgress& onTile = {});
 
 }  // namespace gvdp::detail

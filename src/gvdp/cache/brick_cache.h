@@ -56,8 +56,8 @@ class BrickCache {
   bool budgeted() const { return budgetNs_ >= 0; }
 
   // Frame start: the deadline (budgeted), move the clipmap windows (reset the slabs left, or
-  // everything when the geometry changed), stamp the frame, size the request queue, refill the
-  // free slot list.
+  // everything when the geometry changed or the frame asks for a cold cache), stamp the frame, size
+  // the request queue, refill the free slot list.
   void beginFrame(const FrameSetup& frame) {
     ops_.zero(counters_.data(), COUNTER_COUNT);
     if (budgeted())
@@ -68,7 +68,7 @@ class BrickCache {
     timeline_ = frame.timeline;
     degraded_ = false;
     ++frame_;
-    if (u.fullReset) {
+    if (u.fullReset || frame.coldCache) {
       if (entries_.size() != clipmap_.entryCount())
         entries_ = Buffer<uint32_t>(clipmap_.entryCount());
       ops_.fillBytes(entries_, 0xff);  // ENTRY_MISSING

@@ -23,6 +23,9 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;
   if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
   if (used.budgetMs >= 0.0) j["budget_ms"] = used.budgetMs;
+  j["tiles"] = o.tiles.mode == TileOptions::Mode::Auto  ? "auto"
+               : o.tiles.mode == TileOptions::Mode::Off ? "off"
+                                                        : std::to_string(o.tiles.grid);
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
   nlohmann::json mem = nlohmann::json::object();
   for (const MemoryItem& m : memory) mem[m.name] = m.bytes;
@@ -50,6 +53,9 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"swept_pixels", f.sweptPixels},
                     {"relaunched_rays", f.relaunchedRays},
                     {"lookahead_claims", f.lookaheadClaims},
+                    {"tiles", f.tiles},
+                    {"tile_splits", f.tileSplits},
+                    {"lod_bias", f.lodBias},
                     {"degraded", f.degraded}});
   j["frames"] = list;
   return j.dump(1);

@@ -1,6 +1,8 @@
 // Everything a frame's rays need, as one POD passed by value to kernels: the local origin that
 // keeps float positions small (a multiple of the coarsest brick, so that every level's bricks
-// are aligned on it), the camera relative to it, the LOD and the timeline to record to.
+// are aligned on it), the camera relative to it, the LOD and the timeline to record to. A frame
+// may be a tile of a larger image (tiles/tiled_frame.h): its width x height pixels are the
+// image's from (tileX, tileY), and its rays are the image's, bit for bit.
 #pragma once
 
 #include "gvdp/base/camera.h"
@@ -14,29 +16,43 @@ struct FrameSetup {
   Vec3d localOrigin;  // world position of local (0, 0, 0)
   Vec3f eye;          // camera position relative to localOrigin
   CameraBasis basis;
-  float tanHalfFov;  // horizontal
-  int width, height;
+  float tanHalfFov;             // horizontal
+  int width, height;            // the pixels this frame renders (a tile's, or the image's)
+  int tileX, tileY;             // where they lie in the image
+  int imageWidth, imageHeight;  // the image the camera projects onto
   Lod lod;
   int frameIndex;
+  bool coldCache;         // start from an empty cache (a degraded frame's retry: tiled_frame.h)
   TimelineView timeline;  // GPU-cores timeline of this frame (records null: off)
 
+  // The ray of pixel (px, py) of this frame: pixel (tileX + px, tileY + py) of the image.
   GVDP_HD Ray primaryRay(int px, int py) const {
-    float sx =
-        (2.0f * (static_cast<float>(px) + 0.5f) / static_cast<float>(width) - 1.0f) * tanHalfFov;
-    float sy = (1.0f - 2.0f * (static_cast<float>(py) + 0.5f) / static_cast<float>(height)) *
-               tanHalfFov * static_cast<float>(height) / static_cast<float>(width);
+    float ix = static_cast<float>(px + tileX), iy = static_cast<float>(py + tileY);
+    float w = static_cast<float>(imageWidth), h = static_cast<float>(imageHeight);
+    float sx = (2.0f * (ix + 0.5f) / w - 1.0f) * tanHalfFov;
+    float sy = (1.0f - 2.0f * (iy + 0.5f) / h) * tanHalfFov * h / w;
     return {eye, normalize(basis.forward + basis.right * sx + basis.up * sy)};
   }
   GVDP_HD int pixelCount() const { return width * height; }
 };
+
+// The frame of pixels [x, x + w) x [y, y + h) of `image` (a frame of the whole image).
+inline FrameSetup tileOf(const FrameSetup& image, int x, int y, int w, int h) {
+  FrameSetup t = image;
+  t.tileX = image.tileX + x;
+  t.tileY = image.tileY + y;
+  t.width = w;
+  t.height = h;
+  return t;
+}
 
 constexpr float DEFAULT_FOV_DEGREES = 60.0f;
 
 inline FrameSetup makeFrame(const CameraPose& pose, float voxelSize0, int width, int height,
                             int levels, int frameIndex, float fovDegrees = DEFAULT_FOV_DEGREES) {
   FrameSetup f{};
-  f.width = width;
-  f.height = height;
+  f.width = f.imageWidth = width;
+  f.height = f.imageHeight = height;
   f.frameIndex = frameIndex;
   f.tanHalfFov = tanf(0.5f * fovDegrees * PI / 180.0f);
   f.lod = {voxelSize0, 2.0f * f.tanHalfFov / static_cast<float>(width), levels};

@@ -23,17 +23,31 @@ struct LevelSpan {
   }
 };
 
+// Lod::bias's largest value: the far distance 2^20 times nearer.
+constexpr int MAX_FAR_BIAS = 20;
+
 struct Lod {
   float voxelSize0;  // v0
   float pixelAngle;  // cone spread per unit distance (pixel footprint at t = 1)
   int levels;
+  // A degraded frame's (tiles/tiled_frame.h): every level but the last serves distances 2^bias
+  // times nearer, so the frame asks for coarser bricks; the last one still reaches the far
+  // distance (the clipmap is the same) up to bias levels - 1, and each step beyond halves it.
+  // 0: exact; the values are then bit for bit the same.
+  int bias = 0;
 
   // v0 2^L, exact (a product by a power of two): ldexpf's value without its cost.
   GVDP_HD float voxelSize(int level) const { return voxelSize0 * exp2i(level); }
+  // The cone spread that picks the levels (exact: a product by a power of two).
+  GVDP_HD float levelAngle() const { return pixelAngle * exp2i(bias); }
   GVDP_HD float levelStart(int level) const {
-    return level == 0 ? 0.0f : voxelSize(level - 1) / pixelAngle;
+    return level == 0 ? 0.0f : voxelSize(level - 1) / levelAngle();
   }
-  GVDP_HD float levelEnd(int level) const { return voxelSize(level) / pixelAngle; }
+  GVDP_HD float levelEnd(int level) const {
+    if (level < levels - 1) return voxelSize(level) / levelAngle();
+    int farBias = bias - (levels - 1);
+    return voxelSize(level) / (farBias > 0 ? pixelAngle * exp2i(farBias) : pixelAngle);
+  }
   GVDP_HD LevelSpan span(int level) const {
     float v = voxelSize(level);
     return {v, levelStart(level), levelEnd(level), 1.0f / (v * BRICK_WIDTH)};

@@ -38,6 +38,9 @@ struct FrameStats {
   int64_t sweptPixels = 0;       // dp: rays the device-side schedule left to the sp sweep
   uint64_t relaunchedRays = 0;   // pt: parked rays a production queued again
   uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
+  int tiles = 1;                 // tiles the image was rendered as (tiles/tiled_frame.h)
+  int tileSplits = 0;            // renders replaced by four tiles (the pool overflowed)
+  int lodBias = 0;               // a degraded frame's coarser LOD (tiles/tiled_frame.h)
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline
 };

@@ -41,14 +41,16 @@ struct DpContext {
 };
 
 // Pixels whose centre ray may cross the brick (paper 3.3.2): the projected corners' bounds,
-// widened by a pixel; the whole screen when the brick reaches behind the eye.
+// widened by a pixel, in the image, then in the frame's tile; the whole tile when the brick
+// reaches behind the eye.
 GVDP_HD GVDP_INLINE PixelRect brickScreenRect(const FrameSetup& f, const Clipmap& clipmap,
                                               const BrickKey& key) {
   PixelRect full{0, 0, f.width, f.height};
   float side = f.lod.voxelSize(key.level) * BRICK_WIDTH;
   Vec3i local = key.brick - clipmap.localOriginBrick[key.level];
   Vec3f lo{local.x * side, local.y * side, local.z * side};
-  float aspect = static_cast<float>(f.height) / static_cast<float>(f.width);
+  float w = static_cast<float>(f.imageWidth), h = static_cast<float>(f.imageHeight);
+  float aspect = h / w;
   float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
   for (int c = 0; c < 8; ++c) {
     Vec3f corner = lo + Vec3f{(c & 1) * side, ((c >> 1) & 1) * side, (c >> 2) * side} - f.eye;
@@ -56,14 +58,15 @@ GVDP_HD GVDP_INLINE PixelRect brickScreenRect(const FrameSetup& f, const Clipmap
     if (z <= 1e-3f * side) return full;
     float sx = dot(corner, f.basis.right) / (z * f.tanHalfFov);
     float sy = dot(corner, f.basis.up) / (z * f.tanHalfFov * aspect);
-    float px = (sx + 1.0f) * 0.5f * f.width, py = (1.0f - sy) * 0.5f * f.height;
+    float px = (sx + 1.0f) * 0.5f * w, py = (1.0f - sy) * 0.5f * h;
     minX = fminf(minX, px);
     maxX = fmaxf(maxX, px);
     minY = fminf(minY, py);
     maxY = fmaxf(maxY, py);
   }
-  PixelRect r{static_cast<int>(floorf(minX)) - 1, static_cast<int>(floorf(minY)) - 1,
-              static_cast<int>(ceilf(maxX)) + 1, static_cast<int>(ceilf(maxY)) + 1};
+  PixelRect r{
+      static_cast<int>(floorf(minX)) - 1 - f.tileX, static_cast<int>(floorf(minY)) - 1 - f.tileY,
+      static_cast<int>(ceilf(maxX)) + 1 - f.tileX, static_cast<int>(ceilf(maxY)) + 1 - f.tileY};
   r.x0 = r.x0 < 0 ? 0 : r.x0;
   r.y0 = r.y0 < 0 ? 0 : r.y0;
   r.x1 = r.x1 > f.width ? f.width : r.x1;

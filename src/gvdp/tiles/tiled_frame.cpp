@@ -1,0 +1,200 @@
+#include "gvdp/tiles/tiled_frame.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstring>
+#include <string>
+
+#include "gvdp/base/error.h"
+
+namespace gvdp::detail {
+
+TileOptions::Mode parseTileMode(std::string_view text, int* grid) {
+  if (text == "auto") return TileOptions::Mode::Auto;
+  if (text == "off") return TileOptions::Mode::Off;
+  int n = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  GVDP_INPUT_CHECK(
+      ec == std::errc() && end == text.data() + text.size() && n >= 1 && n <= MAX_TILE_GRID,
+      "bad --tiles '", std::string(text), "' (expected auto, off or 1..", MAX_TILE_GRID, ")");
+  *grid = n;
+  return TileOptions::Mode::Grid;
+}
+
+namespace {
+
+// Splits [0, n) into `parts` nearly equal spans; span i starts at startOf(i).
+int startOf(int n, int parts, int i) {
+  return static_cast<int>(static_cast<int64_t>(n) * i / parts);
+}
+
+void halveUntil(const PixelTile& t, int64_t maxPixels, std::vector<PixelTile>& out) {
+  std::vector<PixelTile> quarters =
+      t.pixels() > maxPixels ? splitTile(t) : std::vector<PixelTile>{};
+  if (quarters.empty()) {
+    out.push_back(t);
+    return;
+  }
+  for (const PixelTile& q : quarters) halveUntil(q, maxPixels, out);
+}
+
+// An attempt whose image is replaced: its time and work count, its pixels do not.
+void discard(FrameStats& s) {
+  s.degraded = false;
+  s.unfinishedPixels = 0;
+  s.cache.coarser = 0;
+}
+
+void copyTile(const Image& tile, const PixelTile& at, Image& out) {
+  for (int y = 0; y < at.height; ++y)
+    std::memcpy(&out.pixels[static_cast<size_t>(at.y + y) * out.width + at.x],
+                &tile.pixels[static_cast<size_t>(y) * tile.width],
+                static_cast<size_t>(at.width) * sizeof(uint32_t));
+}
+
+}  // namespace
+
+std::vector<PixelTile> splitTile(const PixelTile& t) {
+  bool splitX = t.width >= 2 * MIN_TILE_SIDE, splitY = t.height >= 2 * MIN_TILE_SIDE;
+  if (!splitX && !splitY) return {};
+  int w0 = splitX ? t.width / 2 : t.width, h0 = splitY ? t.height / 2 : t.height;
+  std::vector<PixelTile> q;
+  for (int j = 0; j < (splitY ? 2 : 1); ++j)
+    for (int i = 0; i < (splitX ? 2 : 1); ++i)
+      q.push_back(
+          {t.x + i * w0, t.y + j * h0, i == 0 ? w0 : t.width - w0, j == 0 ? h0 : t.height - h0});
+  return q;
+}
+
+std::vector<PixelTile> initialTiles(int width, int height, const TileOptions& o) {
+  PixelTile whole{0, 0, width, height};
+  std::vector<PixelTile> tiles;
+  if (o.mode == TileOptions::Mode::Grid) {
+    int nx = std::min(o.grid, std::max(1, width / MIN_TILE_SIDE));
+    int ny = std::min(o.grid, std::max(1, height / MIN_TILE_SIDE));
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        PixelTile t{startOf(width, nx, i), startOf(height, ny, j), 0, 0};
+        t.width = startOf(width, nx, i + 1) - t.x;
+        t.height = startOf(height, ny, j + 1) - t.y;
+        halveUntil(t, o.maxTilePixels, tiles);
+      }
+    return tiles;
+  }
+  GVDP_INPUT_CHECK(o.mode != TileOptions::Mode::Off || whole.pixels() <= o.maxTilePixels,
+                   "bad size ", width, "x", height, " for --tiles off (at most ", o.maxTilePixels,
+                   " pixels in one frame; use --tiles auto)");
+  halveUntil(whole, o.maxTilePixels, tiles);
+  return tiles;
+}
+
+void addTileStats(FrameStats& total, const FrameStats& t) {
+  total.ms += t.ms;
+  total.unfinishedPixels += t.unfinishedPixels;
+  total.passes += t.passes;
+  total.degraded = total.degraded || t.degraded;
+  total.launches += t.launches;
+  total.launchFailures += t.launchFailures;
+  total.deferred += t.deferred;
+  total.sweptPixels += t.sweptPixels;
+  total.relaunchedRays += t.relaunchedRays;
+  total.lookaheadClaims += t.lookaheadClaims;
+  total.lodBias = std::max(total.lodBias, t.lodBias);
+  CacheStats& c = total.cache;
+  c.requested += t.cache.requested;
+  c.produced += t.cache.produced;
+  c.empty += t.cache.empty;
+  c.failed += t.cache.failed;
+  c.evicted += t.cache.evicted;
+  c.resident = t.cache.resident;  // at the end of the last tile
+  c.unsampled += t.cache.unsampled;
+  c.refills += t.cache.refills;
+  c.samples += t.cache.samples;
+  c.lookups += t.cache.lookups;
+  c.skips += t.cache.skips;
+  c.coarser += t.cache.coarser;
+  if (total.timeline.records.empty()) total.timeline = t.timeline;
+}
+
+namespace {
+
+// A tile that overflows the pool and cannot be split: rendered again from an empty cache at LOD
+// bias 0, 1, ... (render/lod.h: coarser levels, then a nearer far distance) until its bricks
+// fit. The image is then the exact one of the finest bias whose bricks fit the pool, a function
+// of the frame alone: the same on every run and for every scheduler, and coarser everywhere
+// rather than holed where bricks were missing. Only a tile that overflows even at the last bias
+// stays degraded as rendered. `spent`
+// takes the attempts replaced.
+FrameStats renderDegraded(Scheduler& scheduler, const FrameSetup& tile, Image& out,
+                          FrameStats& spent) {
+  FrameSetup f = tile;
+  f.coldCache = true;
+  for (f.lod.bias = 0;; ++f.lod.bias) {
+    FrameStats s = scheduler.render(f, out);
+    if (!s.degraded || f.lod.bias == f.lod.levels - 1 + MAX_FAR_BIAS) {
+      s.lodBias = f.lod.bias;
+      s.degraded = s.degraded || f.lod.bias > 0;
+      if (f.lod.bias > 0) s.cache.coarser = static_cast<uint64_t>(f.pixelCount());
+      return s;
+    }
+    discard(s);
+    addTileStats(spent, s);
+  }
+}
+
+}  // namespace
+
+FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out,
+                       const TileOptions& o, const TileProgress& progress) {
+  std::vector<PixelTile> plan = initialTiles(frame.width, frame.height, o);
+  bool split = o.mode != TileOptions::Mode::Off;
+  FrameStats total;
+  total.index = frame.frameIndex;
+  total.tiles = 0;
+  // The whole image first, into `out` itself: a frame that fits costs nothing more.
+  if (plan.size() == 1) {
+    FrameStats whole = scheduler.render(frame, out);
+    if (!whole.degraded) return whole;
+    discard(whole);
+    addTileStats(total, whole);
+    std::vector<PixelTile> quarters = split ? splitTile(plan[0]) : std::vector<PixelTile>{};
+    if (quarters.empty()) {
+      addTileStats(total, renderDegraded(scheduler, frame, out, total));
+      total.tiles = 1;
+      return total;
+    }
+    ++total.tileSplits;
+    plan = quarters;
+  }
+  out = Image(frame.width, frame.height);
+  // Depth first, in order: a tile that overflows is replaced by its quadrants.
+  std::vector<PixelTile> todo(plan.rbegin(), plan.rend());
+  int done = 0;
+  Image image;
+  while (!todo.empty()) {
+    PixelTile t = todo.back();
+    todo.pop_back();
+    FrameSetup tile = tileOf(frame, t.x, t.y, t.width, t.height);
+    FrameStats s = scheduler.render(tile, image);
+    if (s.degraded) {
+      discard(s);
+      std::vector<PixelTile> quarters = split ? splitTile(t) : std::vector<PixelTile>{};
+      if (!quarters.empty()) {
+        ++total.tileSplits;
+        todo.insert(todo.end(), quarters.rbegin(), quarters.rend());
+        addTileStats(total, s);
+        continue;
+      }
+      addTileStats(total, s);
+      s = renderDegraded(scheduler, tile, image, total);
+    }
+    copyTile(image, t, out);
+    ++total.tiles;
+    ++done;
+    addTileStats(total, s);
+    if (progress) progress(done, done + static_cast<int>(todo.size()));
+  }
+  return total;
+}
+
+}  // namespace gvdp::detail

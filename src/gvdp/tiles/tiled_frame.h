@@ -1,0 +1,65 @@
+// Tiled frames (issue 16, seed 002): a frame whose bricks do not fit the pool, or whose rays do
+// not fit the payload, rendered exactly as tiles, each a frame of its own for the scheduler
+// (render/frame.h: tileOf; a tile's rays are the image's, bit for bit). A tile that still
+// overflows the pool (its frame degraded) is split in four and rendered again, down to
+// MIN_TILE_SIDE. A tile that cannot be split (or any frame under --tiles off) that overflows is
+// rendered again from an empty cache at coarser LODs until its bricks fit (Lod::bias): degraded,
+// but deterministic and without holes. The tiles' images are composed into one; their
+// statistics add up.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string_view>
+#include <vector>
+
+#include "gvdp/base/image.h"
+#include "gvdp/render/frame.h"
+#include "gvdp/sched/scheduler.h"
+
+namespace gvdp::detail {
+
+// --tiles: auto (one tile while the frame fits, else tiles), off (never: a frame that overflows
+// degrades; one larger than a tile's payload is refused), or an N x N grid (each tile still
+// split when it overflows).
+struct TileOptions {
+  enum class Mode { Auto, Off, Grid };
+  Mode mode = Mode::Auto;
+  int grid = 1;                       // Grid: tiles per side
+  int64_t maxTilePixels = 8ll << 20;  // the payload bound: rays per tile
+};
+
+constexpr int MIN_TILE_SIDE = 8;
+constexpr int MAX_IMAGE_SIDE = 32768;
+constexpr int64_t MAX_IMAGE_PIXELS = 512ll << 20;  // a 2 GB image on the host
+constexpr int MAX_TILE_GRID = 256;
+
+// "auto" | "off" | N (1..MAX_TILE_GRID); throws InputError naming the value.
+TileOptions::Mode parseTileMode(std::string_view text, int* grid);
+
+struct PixelTile {
+  int x, y, width, height;
+  int64_t pixels() const { return static_cast<int64_t>(width) * height; }
+};
+
+// The tiles a frame starts from: the whole image (auto, while it holds at most maxTilePixels
+// rays; off), an N x N grid, or the image halved until every tile holds at most maxTilePixels.
+std::vector<PixelTile> initialTiles(int width, int height, const TileOptions& options);
+
+// The four quadrants of a tile (two halves, or the tile itself, where a side is below
+// 2 MIN_TILE_SIDE); empty when it cannot be split.
+std::vector<PixelTile> splitTile(const PixelTile& tile);
+
+// What renderTiled did, in FrameStats::tiles / tileSplits (called after each finished tile).
+using TileProgress = std::function<void(int tilesDone, int tilesKnown)>;
+
+// Renders `frame` (a whole image) with `scheduler` into `out`: one render when the plan is one
+// tile and it does not overflow (no copy), else tile by tile. The statistics are the tiles'
+// sums (time, counts), degraded when a kept tile is.
+FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out,
+                       const TileOptions& options, const TileProgress& progress = {});
+
+// Adds a tile's statistics to a frame's.
+void addTileStats(FrameStats& total, const FrameStats& tile);
+
+}  // namespace gvdp::detail
