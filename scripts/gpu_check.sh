@@ -4,8 +4,9 @@
 #   1. every test (GPU ones included);
 #   2. compute-sanitizer's four tools on every scheduler, each with a large pool (forest
 #      walkthrough, 20000 bricks), a tiny one (random-spheres backward, 64 bricks: refills and
-#      degraded frames) and the large one with --budget-ms 0 ("late": every claim past the
-#      deadline, rays never waiting). memcheck runs on the default build; initcheck, racecheck and synccheck
+#      degraded frames, --tiles off), the large one with --budget-ms 0 ("late": every claim past
+#      the deadline, rays never waiting) and forest backward with 600 bricks ("tiled": frames
+#      rendered as tiles, memcheck and racecheck only). memcheck runs on the default build; initcheck, racecheck and synccheck
 #      on the nocdp build: with CDP in the binary they instrument no kernel ("CUDA Dynamic
 #      Parallelism is not supported by the selected tool"), and initcheck then reports every
 #      download as uninitialised since it never saw the kernels' writes;
@@ -39,8 +40,12 @@ sanitize() {
   local tool=$1 sched=$2 pool=$3 bin=$4 note=${5:-}
   local scene=forest movement=walkthrough args=()
   [ "$pool" = tiny ] && scene=random-spheres movement=backward
-  [ "$sched" != direct ] && args=(--pool-bricks "$([ "$pool" = tiny ] && echo 64 || echo 20000)")
+  [ "$pool" = tiled ] && movement=backward
+  [ "$sched" != direct ] && args=(--pool-bricks "$(case $pool in tiny) echo 64 ;; tiled) echo 600 ;; *) echo 20000 ;; esac)")
   [ "$pool" = late ] && args+=(--budget-ms 0)
+  # The scheduler's own degraded frames (then the cold retries of tiles/tiled_frame.cpp);
+  # "tiled": frames that overflow 600 bricks, rendered as tiles.
+  [ "$pool" = tiny ] && args+=(--tiles off)
   # pt with its lookahead on (off by default): the protocol with every kind of claim in it.
   [ "$sched" = pt ] && args+=(--lookahead 4)
   local log=/tmp/sanitize.log
@@ -65,13 +70,20 @@ sanitize() {
 }
 
 graph_loop=device
-echo "== compute-sanitizer (160x100, 2 frames; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0)"
+echo "== compute-sanitizer (160x100, 2 frames; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0, tiled: forest backward, 600 bricks)"
 : >"$out/sanitizer.log"
 for sched in "${schedulers[@]}"; do
-  pools=(large tiny late)
+  pools=(large tiny late tiled)
   [ "$sched" = direct ] && pools=(none)
   for pool in "${pools[@]}"; do
     sanitize memcheck "$sched" "$pool" ./carry/gvdp
+    if [ "$pool" = tiled ]; then
+      [ "$sched" = dp ] && continue
+      [ "$sched" = graph ] && graph_loop=host
+      sanitize racecheck "$sched" "$pool" ./carry/nocdp/gvdp
+      graph_loop=device
+      continue
+    fi
     if [ "$sched" = dp ]; then
       printf "%-9s %-6s %-5s %-4s %s\n" "init/race/sync" dp "$pool" skip \
         "not run: initcheck, racecheck and synccheck do not instrument CUDA Dynamic Parallelism; dp's protocol runs under ThreadSanitizer on its CPU twin (scripts/tsan.sh: DpCpu tests, in CI)"

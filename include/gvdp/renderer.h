@@ -49,6 +49,9 @@ struct RendererOptions {
   int width = 160, height = 100;
   int levels = DEFAULT_LEVELS;  // clipmap levels: the voxel size doubles per level
   float fovDegrees = DEFAULT_FOV_DEGREES;
+  // The image width whose pixel footprint picks the levels (0: the image's, up to
+  // MAX_LOD_WIDTH, render/frame.h: wider images sample coarser levels, several rays per voxel).
+  int lodWidth = 0;
   // Tiled frames (tiles/tiled_frame.h): auto by default, so that a frame whose bricks do not fit
   // the pool is rendered exactly, tile by tile, and one of any size in bounded ray memory.
   TileOptions tiles;

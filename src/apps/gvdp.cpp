@@ -51,6 +51,7 @@ struct RenderFlags {
   std::optional<int> frames, width, height;
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
+  int lodWidth = 0;
   std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead;
   std::optional<double> budgetMs;
   float fov = DEFAULT_FOV_DEGREES;
@@ -87,6 +88,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
   cmd->add_option("--pool-mb", f.poolMb, "brick pool size in MiB (instead of --pool-bricks)");
   cmd->add_option("--levels", f.levels, "clipmap levels (voxel size doubles per level)");
   cmd->add_option("--fov", f.fov, "horizontal field of view, degrees");
+  cmd->add_option("--lod-width", f.lodWidth,
+                  "the image width whose pixel footprint picks the levels (default 0: the "
+                  "image's, up to " +
+                      std::to_string(MAX_LOD_WIDTH) + "; the clipmap grows as its cube)");
   cmd->add_option("--origin", f.origin, "x,y,z added to the scene's start position");
   cmd->add_option("--tiles", f.tiles,
                   "auto (default: one tile while the frame's bricks fit the pool and its rays "
@@ -189,6 +194,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.lookahead = lookaheadFrom(f.lookahead);
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
+  o.lodWidth = f.lodWidth;
   o.origin = parseVector(f.origin, "--origin");
   o.tiles.mode = parseTileMode(f.tiles, &o.tiles.grid);
   o.scheduler.timeline = !f.timeline.empty();

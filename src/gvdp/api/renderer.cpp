@@ -26,6 +26,9 @@ void validate(const RendererOptions& o) {
   initialTiles(o.width, o.height, o.tiles);  // refuses a frame too large for --tiles off
   GVDP_INPUT_CHECK(o.levels >= 1 && o.levels <= MAX_LEVELS, "bad --levels ", o.levels,
                    " (expected 1..", MAX_LEVELS, ")");
+  GVDP_INPUT_CHECK(o.lodWidth >= 0 && o.lodWidth <= MAX_IMAGE_SIDE, "bad --lod-width ", o.lodWidth,
+                   " (expected 0..", MAX_IMAGE_SIDE, "; 0: the image's, up to ", MAX_LOD_WIDTH,
+                   ")");
   GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
                    " (expected 1..150 degrees)");
   if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
@@ -51,7 +54,8 @@ Renderer::~Renderer() = default;
 
 FrameSetup frameOf(const RendererOptions& o, float voxelSize0, const CameraPose& pose,
                    int frameIndex) {
-  return makeFrame(pose, voxelSize0, o.width, o.height, o.levels, frameIndex, o.fovDegrees);
+  return makeFrame(pose, voxelSize0, o.width, o.height, o.levels, frameIndex, o.fovDegrees,
+                   o.lodWidth);
 }
 
 FrameSetup Renderer::frameAt(const CameraPose& pose) const {

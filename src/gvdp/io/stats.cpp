@@ -1,5 +1,6 @@
 #include "gvdp/io/stats.h"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   j["width"] = o.width;
   j["height"] = o.height;
   j["levels"] = o.levels;
+  j["lod_width"] = o.lodWidth ? o.lodWidth : std::min(o.width, MAX_LOD_WIDTH);
   SchedulerOptions used = resolvedOptions(o.scheduler);  // 0: the scheduler has none
   if (used.poolBricks) j["pool_bricks"] = used.poolBricks;
   if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;

@@ -48,14 +48,23 @@ inline FrameSetup tileOf(const FrameSetup& image, int x, int y, int w, int h) {
 
 constexpr float DEFAULT_FOV_DEGREES = 60.0f;
 
+// The widest image whose pixel footprint picks the levels by default: the clipmap's windows grow
+// as the cube of it (clipmapWidthFor: 328 entries a side at 1500 pixels, 880 at 4096, 5.6 GB of
+// entries), so a wider image samples the levels of this width (several rays per voxel).
+constexpr int MAX_LOD_WIDTH = 4096;
+
+// lodWidth: the image width whose pixel footprint picks the levels (0: `width`, up to
+// MAX_LOD_WIDTH).
 inline FrameSetup makeFrame(const CameraPose& pose, float voxelSize0, int width, int height,
-                            int levels, int frameIndex, float fovDegrees = DEFAULT_FOV_DEGREES) {
+                            int levels, int frameIndex, float fovDegrees = DEFAULT_FOV_DEGREES,
+                            int lodWidth = 0) {
   FrameSetup f{};
   f.width = f.imageWidth = width;
   f.height = f.imageHeight = height;
   f.frameIndex = frameIndex;
   f.tanHalfFov = tanf(0.5f * fovDegrees * PI / 180.0f);
-  f.lod = {voxelSize0, 2.0f * f.tanHalfFov / static_cast<float>(width), levels};
+  if (lodWidth <= 0) lodWidth = width < MAX_LOD_WIDTH ? width : MAX_LOD_WIDTH;
+  f.lod = {voxelSize0, 2.0f * f.tanHalfFov / static_cast<float>(lodWidth), levels};
   double coarsestBrick = static_cast<double>(voxelSize0) * BRICK_WIDTH * (1 << (levels - 1));
   f.localOrigin = {floor(pose.position.x / coarsestBrick) * coarsestBrick,
                    floor(pose.position.y / coarsestBrick) * coarsestBrick,

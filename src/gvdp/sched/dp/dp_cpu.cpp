@@ -99,7 +99,8 @@ class DpCpu final : public SpFrameCpu {
     sweep(f, stats);
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
-    stats.degraded = stats.degraded || counters[DP_LAUNCH_FAILURES] != 0 || stats.cache.failed != 0;
+    // Refused launches are finished by the sweep: exact, not degraded.
+    stats.degraded = stats.degraded || stats.cache.failed != 0;
     stats.launches = counters[DP_PRODUCTIONS] + counters[DP_RELAUNCHES];
     stats.launchFailures = counters[DP_LAUNCH_FAILURES];
   }

@@ -73,7 +73,8 @@ class DpCuda final : public SpFrameCuda {
     stats.launches = c[DP_PRODUCTIONS] + c[DP_RELAUNCHES];
     stats.launchFailures = c[DP_LAUNCH_FAILURES];
     stats.deferred = c[DP_DEFERRED];
-    stats.degraded = stats.degraded || stats.cache.failed != 0 || stats.launchFailures != 0;
+    // Refused launches are finished by the sweep: exact, not degraded.
+    stats.degraded = stats.degraded || stats.cache.failed != 0;
   }
 
   // Rays the device-side schedule left unfinished (refused launches, deferred productions) are
