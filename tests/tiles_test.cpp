@@ -186,7 +186,7 @@ TEST(TiledGpu, TilesUnderASmallPoolEqualTheFramesOfALargePool) {
   GVDP_REQUIRE_GPU();
   for (SchedulerKind k :
        {SchedulerKind::Sp, SchedulerKind::Dp, SchedulerKind::Pt, SchedulerKind::Graph})
-    tilesEqualALargePool(Backend::Cuda, k, 2000, 5, 1500, 1000);
+    tilesEqualALargePool(Backend::Cuda, k, 2000, 3, 1500, 1000);
 }
 
 TEST(DegradedGpu, TheSameCommandTwiceGivesTheSameFramesForEveryScheduler) {
