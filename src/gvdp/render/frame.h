@@ -49,8 +49,9 @@ inline FrameSetup tileOf(const FrameSetup& image, int x, int y, int w, int h) {
 constexpr float DEFAULT_FOV_DEGREES = 60.0f;
 
 // The widest image whose pixel footprint picks the levels by default: the clipmap's windows grow
-// as the cube of it (clipmapWidthFor: 328 entries a side at 1500 pixels, 880 at 4096, 5.6 GB of
-// entries), so a wider image samples the levels of this width (several rays per voxel).
+// as the cube of it (clipmapWidthFor: 328 entries a side at 1500 pixels, 0.28 GB of entries for 8
+// levels; 22.6 GB at 4096, measured), so a wider image samples the levels of this width (several
+// rays per voxel).
 constexpr int MAX_LOD_WIDTH = 4096;
 
 // lodWidth: the image width whose pixel footprint picks the levels (0: `width`, up to
