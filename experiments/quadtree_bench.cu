@@ -143,21 +143,8 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct Method {
-  SubdivisionMethod method;
-  int levelsPerPass;
-};
-
-std::vector<Method> gpuMethods() {
-  std::vector<Method> all{{SubdivisionMethod::MultiPass, 1}};
-  for (int l = 1; l <= QUADTREE_MAX_LEVELS_PER_PASS; ++l)
-    all.push_back({SubdivisionMethod::Subtree, l});
-  all.push_back({SubdivisionMethod::Dynamic, 0});
-  return all;
-}
-
 // Median ms of run() over `runs` runs after `warmup`; -1 when the method is not built.
-double timeMethod(GpuQuadtree& gpu, const SubdivisionParams& p, Method m, const Options& o,
+double timeMethod(GpuQuadtree& gpu, const SubdivisionParams& p, GpuSubdivision m, const Options& o,
                   cudaStream_t stream) {
   GpuTimer timer;
   for (int i = 0; i < o.warmup; ++i) gpu.run(p, m.method, m.levelsPerPass, stream);
@@ -204,7 +191,7 @@ bool benchMap(const Map& map, const Options& o, cudaStream_t stream, std::vector
     std::vector<Tile> reference = subdivide(cpu, p);
     sortCanonical(reference, cpu.levels);
     double multiPassMs = 0;
-    for (Method m : gpuMethods()) {
+    for (GpuSubdivision m : gpuSubdivisions()) {
       SubdivisionStats stats;
       std::vector<Tile> tiles;
       try {

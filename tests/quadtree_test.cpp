@@ -299,26 +299,13 @@ TEST(Quadtree, GpuMipmapMatchesCpu) {
   }
 }
 
-struct Method {
-  SubdivisionMethod method;
-  int levelsPerPass;
-};
-
-std::vector<Method> gpuMethods() {
-  std::vector<Method> all{{SubdivisionMethod::MultiPass, 1}};
-  for (int l = 1; l <= QUADTREE_MAX_LEVELS_PER_PASS; ++l)
-    all.push_back({SubdivisionMethod::Subtree, l});
-  if (GVDP_CDP) all.push_back({SubdivisionMethod::Dynamic, 1});
-  return all;
-}
-
 // Every GPU method on one map: the reference's tiles, and the passes plannedPasses predicts.
 void expectGpuMatchesCpu(GpuQuadtree& gpu, const Grid& g, const SubdivisionParams& p) {
   gpu.upload(g.values.data(), g.width, g.height, nullptr);
   gpu.buildMipmap(nullptr);
   SumMipmap m = mipmapOf(g);
   std::vector<Tile> expected = sorted(subdivide(m, p), m.levels);
-  for (Method x : gpuMethods()) {
+  for (GpuSubdivision x : gpuSubdivisions()) {
     SCOPED_TRACE(::testing::Message() << methodName(x.method) << " L=" << x.levelsPerPass);
     SubdivisionStats stats;
     uint64_t count = gpu.run(p, x.method, x.levelsPerPass, nullptr, &stats);

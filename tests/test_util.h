@@ -57,7 +57,7 @@ struct Renders {
 };
 
 inline Renders renderRun(const std::string& scene, SchedulerOptions s, int frames, int w, int h,
-                         Movement movement = Movement::Walkthrough) {
+                         Movement movement = Movement::Walkthrough, TileOptions tiles = {}) {
   SequenceOptions o;
   o.scene = scene;
   o.frames = frames;
@@ -65,6 +65,7 @@ inline Renders renderRun(const std::string& scene, SchedulerOptions s, int frame
   o.height = h;
   o.movement = movement;
   o.scheduler = s;
+  o.tiles = tiles;
   Renders r;
   renderSequence(o, [&](const Image& im, const FrameStats& st) {
     r.images.push_back(im);

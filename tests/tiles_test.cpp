@@ -75,20 +75,7 @@ TEST(TilePlan, AFrameOverOneTileIsRefusedUnderTilesOff) {
 
 Renders run(const std::string& scene, Backend backend, SchedulerKind kind, uint32_t pool,
             TileOptions tiles, int frames, int w, int h, Movement movement) {
-  SequenceOptions o;
-  o.scene = scene;
-  o.frames = frames;
-  o.width = w;
-  o.height = h;
-  o.movement = movement;
-  o.scheduler = {backend, kind, pool};
-  o.tiles = tiles;
-  Renders r;
-  renderSequence(o, [&](const Image& im, const FrameStats& st) {
-    r.images.push_back(im);
-    r.stats.push_back(st);
-  });
-  return r;
+  return test::renderRun(scene, {backend, kind, pool}, frames, w, h, movement, tiles);
 }
 
 // The case: the backward walkthrough of forest, whose frames need more bricks than the

@@ -74,6 +74,14 @@ const char* methodName(SubdivisionMethod m) {
   return "?";
 }
 
+std::vector<GpuSubdivision> gpuSubdivisions() {
+  std::vector<GpuSubdivision> all{{SubdivisionMethod::MultiPass, 1}};
+  for (int l = 1; l <= QUADTREE_MAX_LEVELS_PER_PASS; ++l)
+    all.push_back({SubdivisionMethod::Subtree, l});
+  if (GVDP_CDP) all.push_back({SubdivisionMethod::Dynamic, 1});
+  return all;
+}
+
 namespace {
 
 void subdivideNode(const QuadtreeView& q, int depth, int x, int y, std::vector<Tile>& out) {

@@ -128,6 +128,15 @@ void checkSubdivisionParams(int width, int height, const SubdivisionParams& p);
 enum class SubdivisionMethod { Cpu, MultiPass, Subtree, Dynamic };
 const char* methodName(SubdivisionMethod m);
 
+// A GPU method with its levels per pass (1 where it has none).
+struct GpuSubdivision {
+  SubdivisionMethod method;
+  int levelsPerPass;
+};
+// Every GPU method this build has: one pass per level, subtree kernels of 1..8 levels, and
+// dynamic parallelism when it is built (GVDP_CDP).
+std::vector<GpuSubdivision> gpuSubdivisions();
+
 // Passes of one subdivision: the host's launches and the active nodes each began with (nodes
 // still to decide, all at that pass's depth); Dynamic has one host launch and counts its
 // device-side launches instead.

@@ -123,8 +123,7 @@ namespace {
 // fit. The image is then the exact one of the finest bias whose bricks fit the pool, a function
 // of the frame alone: the same on every run and for every scheduler, and coarser everywhere
 // rather than holed where bricks were missing. Only a tile that overflows even at the last bias
-// stays degraded as rendered. `spent`
-// takes the attempts replaced.
+// stays degraded as rendered. `spent` takes the attempts replaced.
 FrameStats renderDegraded(Scheduler& scheduler, const FrameSetup& tile, Image& out,
                           FrameStats& spent) {
   FrameSetup f = tile;
@@ -151,44 +150,34 @@ FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out
   FrameStats total;
   total.index = frame.frameIndex;
   total.tiles = 0;
-  // The whole image first, into `out` itself: a frame that fits costs nothing more.
-  if (plan.size() == 1) {
-    FrameStats whole = scheduler.render(frame, out);
-    if (!whole.degraded) return whole;
-    discard(whole);
-    addTileStats(total, whole);
-    std::vector<PixelTile> quarters = split ? splitTile(plan[0]) : std::vector<PixelTile>{};
-    if (quarters.empty()) {
-      addTileStats(total, renderDegraded(scheduler, frame, out, total));
-      total.tiles = 1;
-      return total;
-    }
-    ++total.tileSplits;
-    plan = quarters;
-  }
-  out = Image(frame.width, frame.height);
-  // Depth first, in order: a tile that overflows is replaced by its quadrants.
+  // Depth first, in order: a tile that overflows is replaced by its quadrants. The whole image
+  // renders into `out` itself: a frame that fits costs nothing more.
   std::vector<PixelTile> todo(plan.rbegin(), plan.rend());
   int done = 0;
   Image image;
   while (!todo.empty()) {
     PixelTile t = todo.back();
     todo.pop_back();
+    bool whole = t.pixels() == frame.pixelCount();
+    Image& target = whole ? out : image;
     FrameSetup tile = tileOf(frame, t.x, t.y, t.width, t.height);
-    FrameStats s = scheduler.render(tile, image);
+    FrameStats s = scheduler.render(tile, target);
     if (s.degraded) {
       discard(s);
+      addTileStats(total, s);
       std::vector<PixelTile> quarters = split ? splitTile(t) : std::vector<PixelTile>{};
       if (!quarters.empty()) {
         ++total.tileSplits;
         todo.insert(todo.end(), quarters.rbegin(), quarters.rend());
-        addTileStats(total, s);
         continue;
       }
-      addTileStats(total, s);
-      s = renderDegraded(scheduler, tile, image, total);
+      s = renderDegraded(scheduler, tile, target, total);
     }
-    copyTile(image, t, out);
+    if (!whole) {
+      if (out.width != frame.width || out.height != frame.height)
+        out = Image(frame.width, frame.height);
+      copyTile(image, t, out);
+    }
     ++total.tiles;
     ++done;
     addTileStats(total, s);
