@@ -4,7 +4,7 @@
 set -euo pipefail
 # The viewer (gvdp serve): cpp-httplib, libjpeg-turbo; its browser test: chromium-headless-shell;
 # render --video: ffmpeg.
-packages=(cmake ninja-build g++ pkg-config libgtest-dev libcli11-dev nlohmann-json3-dev libstb-dev
+packages=(cmake ninja-build g++ pkg-config libgtest-dev libcli11-dev nlohmann-json3-dev libstb-dev zlib1g-dev
   clang-format libcpp-httplib-dev libturbojpeg0-dev chromium-headless-shell ffmpeg)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,4 +1,4 @@
-// PNG files of images (stb).
+// PNG files of images: written with zlib in parallel strips, read with stb.
 #pragma once
 
 #include <string>
