@@ -25,7 +25,7 @@ namespace {
 
 constexpr int BYTES_PER_PIXEL = 4;
 constexpr int64_t STRIP_BYTES = 4 << 20;  // raw bytes a strip deflates (about 10 ms each)
-constexpr int PNG_LEVEL = 3;              // zlib level: 2.3x faster than 6, files ~8% larger
+constexpr int PNG_LEVEL = 3;  // zlib: 3.0x faster than 6, files 9% larger (a forest frame)
 
 int paethPredictor(int a, int b, int c) {
   int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
