@@ -47,7 +47,7 @@ constexpr int64_t MAX_POOL_MB = 190000;
 // Numbers left unset take the backend's default.
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
-  std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto";
+  std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto", tilePlan = "on";
   std::optional<int> frames, width, height;
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
@@ -97,6 +97,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "auto (default: one tile while the frame's bricks fit the pool and its rays "
                   "the payload, else exact tiles), off (a frame that overflows degrades) or N "
                   "(an N x N grid)");
+  cmd->add_option("--tile-plan", f.tilePlan,
+                  "on (default: a frame that overflows is cut into tiles planned by the "
+                  "importance pre-pass) or off (into quadrants, recursively)")
+      ->check(CLI::IsMember({"on", "off"}));
   if (timelineCommand) return;
   cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
   cmd->add_option("--timeline", f.timeline,
@@ -197,6 +201,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.lodWidth = f.lodWidth;
   o.origin = parseVector(f.origin, "--origin");
   o.tiles.mode = parseTileMode(f.tiles, &o.tiles.grid);
+  o.tiles.plan = f.tilePlan == "on";
   o.scheduler.timeline = !f.timeline.empty();
   o.scheduler = resolvedOptions(o.scheduler);
   validate(o);
@@ -292,8 +297,9 @@ int runRender(const RenderFlags& flags) {
                       static_cast<unsigned long long>(s.deferred),
                       static_cast<long long>(s.sweptPixels));
         if (s.tiles > 1 || s.tileSplits || s.lodBias)
-          std::printf("           tiles %d  split on overflow %d  lod bias %d\n", s.tiles,
-                      s.tileSplits, s.lodBias);
+          std::printf(
+              "           tiles %d  split on overflow %d  plans %d (%.1f ms)  lod bias %d\n",
+              s.tiles, s.tileSplits, s.tilePlans, s.planMs, s.lodBias);
         std::fflush(stdout);
       },
       TileBar{});

@@ -63,7 +63,8 @@ FrameSetup Renderer::frameAt(const CameraPose& pose) const {
 }
 
 FrameStats Renderer::render(const CameraPose& pose, Image& out) {
-  FrameStats stats = renderTiled(*scheduler_, frameAt(pose), out, options_.tiles, tileProgress_);
+  FrameStats stats = renderTiled(*scheduler_, frameAt(pose), out, options_.tiles,
+                                 options_.scheduler.poolBricks, tileProgress_);
   ++frames_;
   return stats;
 }

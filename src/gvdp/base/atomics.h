@@ -26,6 +26,18 @@ GVDP_HD GVDP_INLINE uint32_t atomicCas32(uint32_t* p, uint32_t expected, uint32_
 #endif
 }
 
+GVDP_HD GVDP_INLINE uint64_t atomicCas64(uint64_t* p, uint64_t expected, uint64_t desired) {
+#if GVDP_IS_GPU_CODE
+  return atomicCAS(reinterpret_cast<unsigned long long*>(p),
+                   static_cast<unsigned long long>(expected),
+                   static_cast<unsigned long long>(desired));
+#else
+  std::atomic_ref<uint64_t>(*p).compare_exchange_strong(expected, desired,
+                                                        std::memory_order_relaxed);
+  return expected;
+#endif
+}
+
 GVDP_HD GVDP_INLINE uint32_t atomicAdd32(uint32_t* p, uint32_t v) {
 #if GVDP_IS_GPU_CODE
   return atomicAdd(p, v);

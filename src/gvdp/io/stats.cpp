@@ -28,6 +28,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   j["tiles"] = o.tiles.mode == TileOptions::Mode::Auto  ? "auto"
                : o.tiles.mode == TileOptions::Mode::Off ? "off"
                                                         : std::to_string(o.tiles.grid);
+  j["tile_plan"] = o.tiles.plan;
   if (o.scheduler.backend == Backend::Cuda) j["device"] = cudaDeviceSummary();
   nlohmann::json mem = nlohmann::json::object();
   for (const MemoryItem& m : memory) mem[m.name] = m.bytes;
@@ -57,6 +58,8 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"lookahead_claims", f.lookaheadClaims},
                     {"tiles", f.tiles},
                     {"tile_splits", f.tileSplits},
+                    {"tile_plans", f.tilePlans},
+                    {"plan_ms", f.planMs},
                     {"lod_bias", f.lodBias},
                     {"degraded", f.degraded}});
   j["frames"] = list;

@@ -5,6 +5,7 @@
 #include "gvdp/sched/direct/direct.h"
 #include "gvdp/sched/dp/dp.h"
 #include "gvdp/sched/graph/graph.h"
+#include "gvdp/sched/importance_map.h"
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/sp/sp.h"
 
@@ -27,6 +28,11 @@ std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions&, ProducerKernelsPt
 }
 
 std::unique_ptr<Scheduler> makeGraphCuda(const SchedulerOptions&, ProducerKernelsPtr) {
+  throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
+}
+
+ImportanceStatus countBricksOnDevice(const ProducerKernels&, const FrameSetup&, uint64_t, GpuStream,
+                                     ImportanceMap&) {
   throw InputError("backend 'cuda' unavailable: this gvdp was built without CUDA");
 }
 

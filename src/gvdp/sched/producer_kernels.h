@@ -17,6 +17,7 @@
 namespace gvdp::detail {
 
 class CudaProducerKernels;  // producer_kernels_cuda.h (CUDA builds)
+struct ImportanceSetup;     // importance.h
 
 class ProducerKernels {
  public:
@@ -27,6 +28,8 @@ class ProducerKernels {
   virtual void produceBrick(const CacheView& cache, const BrickPool& pool,
                             const BrickKey& key) const = 0;
   virtual void renderDirect(const FrameSetup& frame, uint32_t* pixels) const = 0;
+  // The importance pre-pass of tiled frames (importance.h) on the thread pool.
+  virtual void countBricks(const FrameSetup& frame, const ImportanceSetup& setup) const = 0;
   // CUDA backend: the kernels, or null when the producer's translation unit was not compiled
   // by nvcc (the CUDA backend then refuses it).
   virtual const CudaProducerKernels* cuda() const = 0;

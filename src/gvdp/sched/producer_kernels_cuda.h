@@ -7,6 +7,7 @@
 
 #include "gvdp/sched/dp/dp_body.h"
 #include "gvdp/sched/graph/graph_frame.h"
+#include "gvdp/sched/importance.h"
 #include "gvdp/sched/producer_kernels.h"
 #include "gvdp/sched/pt/pt_body.h"
 
@@ -18,6 +19,9 @@ class CudaProducerKernels {
   // direct: one thread per pixel into `image`.
   virtual void launchDirect(const FrameSetup& frame, uint32_t* image,
                             cudaStream_t stream) const = 0;
+  // The importance pre-pass of tiled frames (importance.h): one thread per pre-pass ray.
+  virtual void launchCountBricks(const FrameSetup& frame, const ImportanceSetup& setup,
+                                 cudaStream_t stream) const = 0;
   // sp: Algorithm 2, one block per queued request.
   virtual void launchProduce(const FrameSetup& frame, const CacheView& cache, const BrickPool& pool,
                              uint32_t requests, cudaStream_t stream) const = 0;

@@ -6,6 +6,7 @@
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/produce.h"
 #include "gvdp/render/direct.h"
+#include "gvdp/sched/importance.h"
 #include "gvdp/sched/producer_kernels.h"
 #include "gvdp/world/producer.h"
 
@@ -13,6 +14,7 @@
 #define GVDP_PRODUCER_CUDA 1
 #include "gvdp/sched/direct/direct_kernel.cuh"
 #include "gvdp/sched/graph/graph_produce.cuh"
+#include "gvdp/sched/importance_kernel.cuh"
 #include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/pt/pt_worker.cuh"
 #include "gvdp/sched/sp/sp_produce.cuh"
@@ -43,6 +45,10 @@ class CudaProducerKernelsOf final : public CudaProducerKernels {
 
   void launchDirect(const FrameSetup& frame, uint32_t* image, cudaStream_t stream) const override {
     launchDirectKernel(frame, p_, image, stream);
+  }
+  void launchCountBricks(const FrameSetup& frame, const ImportanceSetup& setup,
+                         cudaStream_t stream) const override {
+    launchCountBricksKernel(frame, p_, setup, stream);
   }
   void launchProduce(const FrameSetup& frame, const CacheView& cache, const BrickPool& pool,
                      uint32_t requests, cudaStream_t stream) const override {
@@ -100,6 +106,18 @@ class ProducerKernelsOf final : public ProducerKernels {
     parallelFor(
         frame.pixelCount(),
         [&](int64_t i) { pixels[i] = renderDirectPixel(frame, p_, static_cast<int>(i)); }, 16);
+  }
+  void countBricks(const FrameSetup& frame, const ImportanceSetup& setup) const override {
+    parallelFor(
+        setup.rays(),
+        [&](int64_t i) { countRayBricks(frame, p_, setup, static_cast<uint32_t>(i)); }, 16);
+    auto slots = static_cast<int64_t>(setup.tableSize());
+    parallelFor(
+        slots,
+        [&](int64_t i) { classifyImportanceBrick(frame, p_, setup, static_cast<uint64_t>(i)); },
+        4096);
+    parallelFor(
+        slots, [&](int64_t i) { countImportanceNode(setup, static_cast<uint64_t>(i)); }, 4096);
   }
 #if GVDP_PRODUCER_CUDA
   const CudaProducerKernels* cuda() const override {

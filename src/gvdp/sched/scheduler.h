@@ -18,6 +18,9 @@
 
 namespace gvdp::detail {
 
+struct ImportanceMap;      // importance_map.h
+struct ImportanceOptions;  // importance_map.h
+
 enum class Backend { Cpu, Cuda };
 enum class SchedulerKind { Direct, Sp, Dp, Pt, Graph };
 
@@ -39,7 +42,9 @@ struct FrameStats {
   uint64_t relaunchedRays = 0;   // pt: parked rays a production queued again
   uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
   int tiles = 1;                 // tiles the image was rendered as (tiles/tiled_frame.h)
-  int tileSplits = 0;            // renders replaced by four tiles (the pool overflowed)
+  int tileSplits = 0;            // renders replaced by tiles (the pool overflowed)
+  int tilePlans = 0;             // importance pre-passes run to plan tiles (tiles/tile_plan.h)
+  double planMs = 0.0;           // their time (pre-pass and subdivision; included in ms)
   int lodBias = 0;               // a degraded frame's coarser LOD (tiles/tiled_frame.h)
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline
@@ -117,6 +122,8 @@ class Scheduler {
   GpuStream stream() const { return stream_.get(); }
   // Bytes of every structure the scheduler holds (after the last frame).
   virtual MemoryReport memory() const = 0;
+  // The importance pre-pass of tiled frames (importance_map.h) for `frame`, on this backend.
+  ImportanceMap importance(const FrameSetup& frame, const ImportanceOptions& options) const;
 
  protected:
   virtual void prepareFrame(const FrameSetup&) {}

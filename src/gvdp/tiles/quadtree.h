@@ -15,6 +15,7 @@
 
 #include "gvdp/base/defs.h"
 #include "gvdp/base/gpu.h"
+#include "gvdp/base/quadtree_layout.h"
 
 namespace gvdp::detail {
 
@@ -50,15 +51,6 @@ struct NodeDecision {
   uint64_t sum;
 };
 
-// The sum-mipmap stored root first: depth d (mipmap level K - d) is a 2^d x 2^d square at
-// offset (4^d - 1) / 3, so one formula addresses every level on either backend.
-GVDP_HD inline uint64_t mipmapDepthOffset(int depth) {
-  return ((uint64_t{1} << (2 * depth)) - 1) / 3;
-}
-GVDP_HD inline uint64_t mipmapSize(int levels) {
-  return mipmapDepthOffset(levels + 1);
-}
-
 // What the rule reads: the sums, the grid and the limits. POD, passed to kernels by value.
 struct QuadtreeView {
   const uint64_t* sums;  // root first (mipmapDepthOffset)
@@ -66,10 +58,7 @@ struct QuadtreeView {
   int blocksX, blocksY;  // valid blocks; the rest of the 2^K square is zero padding
   SubdivisionParams params;
 
-  GVDP_HD uint64_t sum(int depth, int x, int y) const {
-    return sums[mipmapDepthOffset(depth) + (uint64_t{static_cast<uint32_t>(y)} << depth) +
-                static_cast<uint32_t>(x)];
-  }
+  GVDP_HD uint64_t sum(int depth, int x, int y) const { return sums[mipmapIndex(depth, x, y)]; }
 };
 
 // A node's pixels, clipped to the image; width or height 0 when it lies outside.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gvdp/base/error.h"
+#include "gvdp/tiles/tile_plan.h"
 
 namespace gvdp::detail {
 
@@ -100,6 +101,8 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   total.relaunchedRays += t.relaunchedRays;
   total.lookaheadClaims += t.lookaheadClaims;
   total.lodBias = std::max(total.lodBias, t.lodBias);
+  total.tilePlans += t.tilePlans;
+  total.planMs += t.planMs;
   CacheStats& c = total.cache;
   c.requested += t.cache.requested;
   c.produced += t.cache.produced;
@@ -143,37 +146,79 @@ FrameStats renderDegraded(Scheduler& scheduler, const FrameSetup& tile, Image& o
 
 }  // namespace
 
+namespace {
+
+struct PendingTile {
+  PixelTile tile;
+  bool planned;  // by the pre-pass (or a quadrant of such a tile): not planned again
+};
+
+// The plan of `region` of `frame` (pixels of the frame), its time added to `total`; empty when
+// the pre-pass gave up or found the region one tile (then quadrants go on).
+std::vector<PendingTile> planRegion(const Scheduler& scheduler, const FrameSetup& frame,
+                                    const PixelTile& region, uint64_t poolBricks,
+                                    const TileOptions& o, FrameStats& total) {
+  TilePlan plan =
+      planTiles(scheduler, tileOf(frame, region.x, region.y, region.width, region.height),
+                poolBricks, o.maxTilePixels);
+  ++total.tilePlans;
+  double ms = plan.map.ms + plan.subdivideMs;
+  total.planMs += ms;
+  total.ms += ms;
+  std::vector<PendingTile> tiles;
+  if (plan.tiles.size() < 2) return tiles;
+  for (auto it = plan.tiles.rbegin(); it != plan.tiles.rend(); ++it)
+    tiles.push_back({{region.x + it->x, region.y + it->y, it->width, it->height}, true});
+  return tiles;
+}
+
+}  // namespace
+
 FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out,
-                       const TileOptions& o, const TileProgress& progress) {
-  std::vector<PixelTile> plan = initialTiles(frame.width, frame.height, o);
+                       const TileOptions& o, uint64_t poolBricks, const TileProgress& progress) {
   bool split = o.mode != TileOptions::Mode::Off;
+  bool plans = split && o.plan && poolBricks > 0;
   FrameStats total;
   total.index = frame.frameIndex;
   total.tiles = 0;
-  // Depth first, in order: a tile that overflows is replaced by its quadrants. The whole image
-  // renders into `out` itself: a frame that fits costs nothing more.
-  std::vector<PixelTile> todo(plan.rbegin(), plan.rend());
+  // Depth first, in order (a stack, the first tile last): a tile that overflows is replaced by
+  // its plan or its quadrants. The whole image renders into `out` itself: a frame that fits
+  // costs nothing more.
+  std::vector<PendingTile> todo;
+  PixelTile whole{0, 0, frame.width, frame.height};
+  if (plans && o.mode == TileOptions::Mode::Auto && whole.pixels() > o.maxTilePixels)
+    todo = planRegion(scheduler, frame, whole, poolBricks, o, total);
+  if (todo.empty()) {
+    std::vector<PixelTile> initial = initialTiles(frame.width, frame.height, o);
+    for (auto it = initial.rbegin(); it != initial.rend(); ++it) todo.push_back({*it, false});
+  }
   int done = 0;
   Image image;
   while (!todo.empty()) {
-    PixelTile t = todo.back();
+    PendingTile pending = todo.back();
     todo.pop_back();
-    bool whole = t.pixels() == frame.pixelCount();
-    Image& target = whole ? out : image;
+    const PixelTile& t = pending.tile;
+    bool isWhole = t.pixels() == frame.pixelCount();
+    Image& target = isWhole ? out : image;
     FrameSetup tile = tileOf(frame, t.x, t.y, t.width, t.height);
     FrameStats s = scheduler.render(tile, target);
     if (s.degraded) {
       discard(s);
       addTileStats(total, s);
-      std::vector<PixelTile> quarters = split ? splitTile(t) : std::vector<PixelTile>{};
-      if (!quarters.empty()) {
+      std::vector<PendingTile> next;
+      if (plans && !pending.planned) next = planRegion(scheduler, frame, t, poolBricks, o, total);
+      if (next.empty() && split) {
+        std::vector<PixelTile> quarters = splitTile(t);
+        for (auto it = quarters.rbegin(); it != quarters.rend(); ++it) next.push_back({*it, true});
+      }
+      if (!next.empty()) {
         ++total.tileSplits;
-        todo.insert(todo.end(), quarters.rbegin(), quarters.rend());
+        todo.insert(todo.end(), next.begin(), next.end());
         continue;
       }
       s = renderDegraded(scheduler, tile, target, total);
     }
-    if (!whole) {
+    if (!isWhole) {
       if (out.width != frame.width || out.height != frame.height)
         out = Image(frame.width, frame.height);
       copyTile(image, t, out);

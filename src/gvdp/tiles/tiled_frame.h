@@ -27,6 +27,7 @@ struct TileOptions {
   Mode mode = Mode::Auto;
   int grid = 1;                       // Grid: tiles per side
   int64_t maxTilePixels = 8ll << 20;  // the payload bound: rays per tile
+  bool plan = true;  // plan tiles from the importance pre-pass (false: quadrants only)
 };
 
 constexpr int MIN_TILE_SIDE = 8;
@@ -53,11 +54,13 @@ std::vector<PixelTile> splitTile(const PixelTile& tile);
 // What renderTiled did, in FrameStats::tiles / tileSplits (called after each finished tile).
 using TileProgress = std::function<void(int tilesDone, int tilesKnown)>;
 
-// Renders `frame` (a whole image) with `scheduler` into `out`: one render when the plan is one
-// tile and it does not overflow (no copy), else tile by tile. The statistics are the tiles'
-// sums (time, counts), degraded when a kept tile is.
+// Renders `frame` (a whole image) with `scheduler`, whose pool holds `poolBricks` (0: none, no
+// plans), into `out`: one render when the plan is one tile and it does not overflow (no copy),
+// else tile by tile. The statistics are the tiles' sums (time, counts; the plans' time too),
+// degraded when a kept tile is.
 FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out,
-                       const TileOptions& options, const TileProgress& progress = {});
+                       const TileOptions& options, uint64_t poolBricks,
+                       const TileProgress& progress = {});
 
 // Adds a tile's statistics to a frame's.
 void addTileStats(FrameStats& total, const FrameStats& tile);
