@@ -8,4 +8,4 @@ scripts/setup.sh
 cmake --preset tsan >/dev/null
 cmake --build build-tsan -j "$(nproc)" --target gvdp_tests gvdp
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" ./build-tsan/tests/gvdp_tests \
-  --gtest_filter='*DpCpu*:*PtCpu*:PtRing.*:PtWaitList.*:Cache.*:*SpTest.IsDeterministic*:*SpTest.Tiny*:BudgetCpu.*:ServeLoop.*:ServeHttp.*:ThreadPool.*' --gtest_brief=1
+  --gtest_filter='*DpCpu*:*PtCpu*:PtRing.*:PtWaitList.*:Cache.*:*SpTest.IsDeterministic*:*SpTest.Tiny*:BudgetCpu.*:ServeLoop.*:ServeHttp.*:ThreadPool.*:ImportanceCpu.NodeCounts*' --gtest_brief=1
