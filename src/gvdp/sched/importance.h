@@ -65,11 +65,14 @@ GVDP_HD GVDP_INLINE uint64_t mixKey(uint64_t k) {  // splitmix64's finaliser
   return k ^ (k >> 31);
 }
 
-// Inserts `key`; true when this call inserted it (a first sighting). Probes at most the whole
-// table; a table past maxEntries raises IMPORTANCE_FULL.
+// Inserts `key`; true when this call inserted it (a first sighting). A table past maxEntries,
+// or a probe sequence past IMPORTANCE_MAX_PROBES, raises IMPORTANCE_FULL, after which nothing is
+// inserted (the pass is run again with a larger table): a full table is never probed through.
+constexpr uint64_t IMPORTANCE_MAX_PROBES = 4096;
 GVDP_HD GVDP_INLINE bool insertImportanceKey(const ImportanceSetup& s, uint64_t key) {
+  if (loadAcquire32(s.status + IMPORTANCE_FULL)) return false;
   uint64_t h = mixKey(key);
-  for (uint64_t probe = 0; probe <= s.tableMask; ++probe) {
+  for (uint64_t probe = 0; probe < IMPORTANCE_MAX_PROBES && probe <= s.tableMask; ++probe) {
     uint64_t found = atomicCas64(s.table + ((h + probe) & s.tableMask), IMPORTANCE_FREE, key);
     if (found == key) return false;
     if (found == IMPORTANCE_FREE) {
@@ -85,7 +88,7 @@ GVDP_HD GVDP_INLINE bool insertImportanceKey(const ImportanceSetup& s, uint64_t 
 // The slot of `key` (inserted by an earlier pass), or the table's size when it is not there.
 GVDP_HD GVDP_INLINE uint64_t findImportanceKey(const ImportanceSetup& s, uint64_t key) {
   uint64_t h = mixKey(key);
-  for (uint64_t probe = 0; probe <= s.tableMask; ++probe) {
+  for (uint64_t probe = 0; probe < IMPORTANCE_MAX_PROBES && probe <= s.tableMask; ++probe) {
     uint64_t at = (h + probe) & s.tableMask, found = s.table[at];
     if (found == key) return at;
     if (found == IMPORTANCE_FREE) break;
