@@ -9,6 +9,8 @@ namespace gvdp::detail {
 
 namespace {
 
+constexpr uint64_t MIN_TABLE_ENTRIES = uint64_t{1} << 16;
+
 int ceilDiv(int a, int b) {
   return (a + b - 1) / b;
 }
@@ -23,7 +25,8 @@ ImportanceMap importanceShape(const FrameSetup& frame, const ImportanceOptions& 
       "importance block of ", o.blockPixels, " pixels: not a multiple of the stride ", o.stride,
       " up to 4096");
   GVDP_INPUT_CHECK(
-      o.firstTableEntries >= 16 && (o.firstTableEntries & (o.firstTableEntries - 1)) == 0,
+      o.firstTableEntries == 0 ||
+          (o.firstTableEntries >= 16 && (o.firstTableEntries & (o.firstTableEntries - 1)) == 0),
       "importance table of ", o.firstTableEntries, " entries: not a power of two >= 16");
   ImportanceMap m;
   m.stride = o.stride;
@@ -69,7 +72,13 @@ ImportanceStatus countBricksOnHost(const ProducerKernels& producer, const FrameS
 ImportanceMap Scheduler::importance(const FrameSetup& frame, const ImportanceOptions& o) const {
   ImportanceMap m = importanceShape(frame, o);
   auto start = std::chrono::steady_clock::now();
-  for (uint64_t entries = o.firstTableEntries;; entries *= 4) {
+  uint64_t first = o.firstTableEntries;
+  if (first == 0) {
+    uint64_t keys = uint64_t{importanceSetup(m, frame, 16).rays()} * 8 * (m.levels + 2);
+    first = MIN_TABLE_ENTRIES;
+    while (first < keys && first * sizeof(uint64_t) < o.maxTableBytes) first *= 2;
+  }
+  for (uint64_t entries = first;; entries *= 4) {
     if (entries * sizeof(uint64_t) > o.maxTableBytes) {
       m.failure = "the hash table would pass its limit";
       break;

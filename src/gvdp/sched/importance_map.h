@@ -16,8 +16,10 @@ namespace gvdp::detail {
 struct ImportanceOptions {
   int blockPixels = 16;  // at least: doubled until the blocks fit IMPORTANCE_MAX_LEVELS levels
   int stride = 4;        // pixels between pre-pass rays (a divisor of blockPixels)
-  uint64_t firstTableEntries = uint64_t{1} << 20;  // a power of two: 8 MB, then 4x per refill
-  uint64_t maxTableBytes = uint64_t{1} << 30;      // the hash table's limit; past it, no map
+  // The first table's entries, a power of two (then 4x per refill); 0: from the rays, about 8
+  // keys a ray per quadtree depth, so that a refill is rare.
+  uint64_t firstTableEntries = 0;
+  uint64_t maxTableBytes = uint64_t{1} << 30;  // the hash table's limit; past it, no map
 };
 
 struct ImportanceMap {

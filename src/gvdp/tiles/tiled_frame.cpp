@@ -185,13 +185,8 @@ FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out
   // its plan or its quadrants. The whole image renders into `out` itself: a frame that fits
   // costs nothing more.
   std::vector<PendingTile> todo;
-  PixelTile whole{0, 0, frame.width, frame.height};
-  if (plans && o.mode == TileOptions::Mode::Auto && whole.pixels() > o.maxTilePixels)
-    todo = planRegion(scheduler, frame, whole, poolBricks, o, total);
-  if (todo.empty()) {
-    std::vector<PixelTile> initial = initialTiles(frame.width, frame.height, o);
-    for (auto it = initial.rbegin(); it != initial.rend(); ++it) todo.push_back({*it, false});
-  }
+  std::vector<PixelTile> initial = initialTiles(frame.width, frame.height, o);
+  for (auto it = initial.rbegin(); it != initial.rend(); ++it) todo.push_back({*it, false});
   int done = 0;
   Image image;
   while (!todo.empty()) {
