@@ -41,7 +41,8 @@ static_assert(MAX_LEVELS <= 16, "levels take 4 bits of an importance key");
 constexpr int IMPORTANCE_ENTRIES = 0;  // keys inserted
 constexpr int IMPORTANCE_FULL = 1;     // nonzero: the table filled up; the counts are invalid
 constexpr int IMPORTANCE_RANGE = 2;    // nonzero: a brick beyond the keys' reach (no counts)
-constexpr int IMPORTANCE_STATUS_WORDS = 3;
+constexpr int IMPORTANCE_BRICKS = 3;   // bricks listed (ImportanceSetup::bricks)
+constexpr int IMPORTANCE_STATUS_WORDS = 4;
 
 struct ImportanceSetup {
   int blockPixels;    // a block is blockPixels x blockPixels pixels (a multiple of stride)
@@ -50,6 +51,7 @@ struct ImportanceSetup {
   int raysX, raysY;   // ceil(width / stride) x ceil(height / stride)
   uint64_t* table;    // open addressing, IMPORTANCE_FREE where free; size tableMask + 1
   uint8_t* occupied;  // per table slot: a brick key whose brick production would not find empty
+  uint64_t* bricks;   // the slots of the bricks' own keys, in insertion order (tableMask + 1)
   uint64_t tableMask;
   uint32_t maxEntries;  // past it the table counts as full (3/4 of its size)
   uint32_t* counts;     // per node, root first (base/quadtree_layout.h)
@@ -69,15 +71,18 @@ GVDP_HD GVDP_INLINE uint64_t mixKey(uint64_t k) {  // splitmix64's finaliser
 // or a probe sequence past IMPORTANCE_MAX_PROBES, raises IMPORTANCE_FULL, after which nothing is
 // inserted (the pass is run again with a larger table): a full table is never probed through.
 constexpr uint64_t IMPORTANCE_MAX_PROBES = 4096;
-GVDP_HD GVDP_INLINE bool insertImportanceKey(const ImportanceSetup& s, uint64_t key) {
+GVDP_HD GVDP_INLINE bool insertImportanceKey(const ImportanceSetup& s, uint64_t key,
+                                             uint64_t* slot = nullptr) {
   if (loadAcquire32(s.status + IMPORTANCE_FULL)) return false;
   uint64_t h = mixKey(key);
   for (uint64_t probe = 0; probe < IMPORTANCE_MAX_PROBES && probe <= s.tableMask; ++probe) {
-    uint64_t found = atomicCas64(s.table + ((h + probe) & s.tableMask), IMPORTANCE_FREE, key);
+    uint64_t at = (h + probe) & s.tableMask;
+    uint64_t found = atomicCas64(s.table + at, IMPORTANCE_FREE, key);
     if (found == key) return false;
     if (found == IMPORTANCE_FREE) {
       if (atomicAdd32(s.status + IMPORTANCE_ENTRIES, 1) >= s.maxEntries)
         atomicExch32(s.status + IMPORTANCE_FULL, 1);
+      if (slot) *slot = at;
       return true;
     }
   }
@@ -130,7 +135,10 @@ struct CountingAccess {
     auto coord = [](int c) { return static_cast<uint64_t>(c + IMPORTANCE_COORD_REACH); };
     uint64_t brickBits = static_cast<uint64_t>(level) << (3 * B) | coord(rel.x) << (2 * B) |
                          coord(rel.y) << B | coord(rel.z);
-    if (insertImportanceKey(setup, IMPORTANCE_BRICK_DEPTH << IMPORTANCE_DEPTH_SHIFT | brickBits)) {
+    uint64_t slot = 0;
+    if (insertImportanceKey(setup, IMPORTANCE_BRICK_DEPTH << IMPORTANCE_DEPTH_SHIFT | brickBits,
+                            &slot)) {
+      setup.bricks[atomicAdd32(setup.status + IMPORTANCE_BRICKS, 1)] = slot;
       for (int depth = 0; depth <= setup.levels; ++depth) {
         int shift = setup.levels - depth;
         uint64_t node = static_cast<uint64_t>(blockY >> shift) << depth |
@@ -169,26 +177,25 @@ GVDP_HD GVDP_INLINE void countRayBricks(const FrameSetup& frame, const P& produc
   march(r, frame.lod, state, access);
 }
 
-// Pass 2, per table slot: a brick's own key gets production's verdict (any sample not flagged
-// empty: the brick takes a slot), read from the producer as production reads it.
-template <class P>
-GVDP_HD GVDP_INLINE void classifyImportanceBrick(const FrameSetup& frame, const P& producer,
-                                                 const ImportanceSetup& s, uint64_t slot) {
-  uint64_t key = s.table[slot];
-  if (key == IMPORTANCE_FREE || key >> IMPORTANCE_DEPTH_SHIFT != IMPORTANCE_BRICK_DEPTH) return;
+// Pass 2, per listed brick: production's verdict (a sample not flagged empty: the brick takes a
+// slot), read from the producer as production reads it; the samples first, first + step, ...
+// (a thread per brick on the CPU, a warp on the GPU).
+GVDP_HD GVDP_INLINE BrickKey importanceBrick(const FrameSetup& frame, uint64_t key) {
   constexpr int B = IMPORTANCE_COORD_BITS;
   constexpr uint64_t MASK = (uint64_t{1} << B) - 1;
   int level = static_cast<int>((key >> (3 * B)) & 15);
   auto coord = [&](int shift) {
     return static_cast<int>((key >> shift) & MASK) - IMPORTANCE_COORD_REACH;
   };
-  Vec3i brick = Vec3i{coord(2 * B), coord(B), coord(0)} + importanceEyeBrick(frame, level) +
-                importanceOriginBrick(frame, level);
-  BrickKey k{brick, level};
-  uint8_t occupied = 0;
-  for (int i = 0; i < BRICK_SAMPLE_COUNT && !occupied; ++i)
-    occupied = produceBrickSample(producer, k, i).empty ? 0 : 1;
-  s.occupied[slot] = occupied;
+  return {Vec3i{coord(2 * B), coord(B), coord(0)} + importanceEyeBrick(frame, level) +
+              importanceOriginBrick(frame, level),
+          level};
+}
+
+template <class P>
+GVDP_HD GVDP_INLINE bool importanceSampleOccupied(const P& producer, const BrickKey& brick,
+                                                  int sample) {
+  return !produceBrickSample(producer, brick, sample).empty;
 }
 
 // Pass 3, per table slot: a node's key counts one for the node when its brick is occupied.

@@ -12,6 +12,7 @@ ImportanceStatus countBricksOnDevice(const ProducerKernels& producer, const Fram
   GVDP_INPUT_CHECK(cuda != nullptr, "this producer has no CUDA kernels (compile it with nvcc)");
   DeviceBuffer<uint64_t> table(tableEntries);
   DeviceBuffer<uint8_t> occupied(tableEntries);
+  DeviceBuffer<uint64_t> bricks(tableEntries);
   DeviceBuffer<uint32_t> counts(mipmapSize(m.levels));
   DeviceBuffer<uint32_t> status(IMPORTANCE_STATUS_WORDS);
   fillDevice(table.data(), 0xff, table.bytes(), stream);
@@ -20,6 +21,7 @@ ImportanceStatus countBricksOnDevice(const ProducerKernels& producer, const Fram
   ImportanceSetup s = importanceSetup(m, frame, tableEntries);
   s.table = table.data();
   s.occupied = occupied.data();
+  s.bricks = bricks.data();
   s.counts = counts.data();
   s.status = status.data();
   cuda->launchCountBricks(frame, s, stream);

@@ -58,11 +58,13 @@ ImportanceStatus countBricksOnHost(const ProducerKernels& producer, const FrameS
                                    uint64_t tableEntries, ImportanceMap& m) {
   std::vector<uint64_t> table(tableEntries, IMPORTANCE_FREE);
   std::vector<uint8_t> occupied(tableEntries, 0);
+  std::vector<uint64_t> bricks(tableEntries);
   m.counts.assign(mipmapSize(m.levels), 0);
   ImportanceStatus status{};
   ImportanceSetup s = importanceSetup(m, frame, tableEntries);
   s.table = table.data();
   s.occupied = occupied.data();
+  s.bricks = bricks.data();
   s.counts = m.counts.data();
   s.status = status.data();
   producer.countBricks(frame, s);

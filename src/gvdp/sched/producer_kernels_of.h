@@ -111,11 +111,18 @@ class ProducerKernelsOf final : public ProducerKernels {
     parallelFor(
         setup.rays(),
         [&](int64_t i) { countRayBricks(frame, p_, setup, static_cast<uint32_t>(i)); }, 16);
-    auto slots = static_cast<int64_t>(setup.tableSize());
     parallelFor(
-        slots,
-        [&](int64_t i) { classifyImportanceBrick(frame, p_, setup, static_cast<uint64_t>(i)); },
-        4096);
+        setup.status[IMPORTANCE_BRICKS],
+        [&](int64_t i) {
+          uint64_t slot = setup.bricks[i];
+          BrickKey brick = importanceBrick(frame, setup.table[slot]);
+          uint8_t occupied = 0;
+          for (int k = 0; k < BRICK_SAMPLE_COUNT && !occupied; ++k)
+            occupied = importanceSampleOccupied(p_, brick, k) ? 1 : 0;
+          setup.occupied[slot] = occupied;
+        },
+        16);
+    auto slots = static_cast<int64_t>(setup.tableSize());
     parallelFor(
         slots, [&](int64_t i) { countImportanceNode(setup, static_cast<uint64_t>(i)); }, 4096);
   }
