@@ -147,11 +147,11 @@ TEST(TilePlanCpu, PlannedTilesCoverTheFrameOnceWithinTheCapacity) {
 TEST(TiledCpu, PlansDiscardFewerRendersThanQuadrants) {
   constexpr int FRAMES = 2, W = 160, H = 100;
   SchedulerOptions sp{Backend::Cpu, SchedulerKind::Sp, 600};
-  TileOptions quadrants;
-  quadrants.plan = false;
+  TileOptions plans, quadrants;
+  plans.plan = true;
   test::Renders large = test::renderRun("forest", {Backend::Cpu, SchedulerKind::Sp, 0}, FRAMES, W,
                                         H, Movement::Backward);
-  test::Renders planned = test::renderRun("forest", sp, FRAMES, W, H, Movement::Backward);
+  test::Renders planned = test::renderRun("forest", sp, FRAMES, W, H, Movement::Backward, plans);
   test::Renders split = test::renderRun("forest", sp, FRAMES, W, H, Movement::Backward, quadrants);
   int plannedSplits = 0, quadrantSplits = 0;
   for (int f = 0; f < FRAMES; ++f) {

@@ -47,7 +47,7 @@ constexpr int64_t MAX_POOL_MB = 190000;
 // Numbers left unset take the backend's default.
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
-  std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto", tilePlan = "on";
+  std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto", tilePlan = "off";
   std::optional<int> frames, width, height;
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;

@@ -2,7 +2,8 @@
 // not fit the payload, rendered exactly as tiles, each a frame of its own for the scheduler
 // (render/frame.h: tileOf; a tile's rays are the image's, bit for bit). A tile that still
 // overflows the pool (its frame degraded) is split in four and rendered again, down to
-// MIN_TILE_SIDE. A tile that cannot be split (or any frame under --tiles off) that overflows is
+// MIN_TILE_SIDE (with TileOptions::plan, first cut into the tiles the importance pre-pass plans:
+// tile_plan.h). A tile that cannot be split (or any frame under --tiles off) that overflows is
 // rendered again from an empty cache at coarser LODs until its bricks fit (Lod::bias): degraded,
 // but deterministic and without holes. The tiles' images are composed into one; their
 // statistics add up.
@@ -27,7 +28,9 @@ struct TileOptions {
   Mode mode = Mode::Auto;
   int grid = 1;                       // Grid: tiles per side
   int64_t maxTilePixels = 8ll << 20;  // the payload bound: rays per tile
-  bool plan = true;  // plan tiles from the importance pre-pass (false: quadrants only)
+  // Plan the tiles of a render that overflows from the importance pre-pass (tile_plan.h); false:
+  // its quadrants. Off by default: on an H100 the quadrants were faster (BENCHMARKS.md).
+  bool plan = false;
 };
 
 constexpr int MIN_TILE_SIDE = 8;
