@@ -307,6 +307,56 @@ TEST(KdTree, BuildsAreDeterministicAndSameTreeSeesDifferences) {
   }
 }
 
+// Seed 004's level-by-level builder makes the sequential builder's tree, node for node, whatever
+// the number of threads (the pool) and however the nodes are stored (level by level here).
+TEST(KdTree, LevelByLevelBuilderMakesTheSequentialTree) {
+  std::vector<Named> meshes = testMeshes();
+  meshes.push_back({"icosphere 4", test::icosphere(4)});
+  meshes.push_back({"dense soup", test::randomSoup(20000, 0.05f, 13)});
+  for (const Named& m : meshes) {
+    SCOPED_TRACE(m.name);
+    KdTree seq = buildKdTreeSequential(m.mesh), par = buildKdTreeParallel(m.mesh);
+    std::string why;
+    EXPECT_TRUE(sameTree(seq, par, &why)) << why;
+    EXPECT_EQ(par.nodes.size(), seq.nodes.size());
+    EXPECT_EQ(par.leafTriangles.size(), seq.leafTriangles.size());
+    EXPECT_DOUBLE_EQ(kdTreeStats(par).sahCost, kdTreeStats(seq).sahCost);
+  }
+}
+
+// The per-event rule of the level-by-level builder against the sequential sweep's counts: every
+// candidate of a node with ties (several END, PLANAR and START events at one position).
+TEST(KdTree, PerEventRuleEvaluatesEachPositionOnceWithTheSweepsCounts) {
+  // triangles' extents on one axis: [0,1] [1,2] [1,1] [1,1] [1,3] [2,2] [0,2]
+  const float lo[] = {0, 1, 1, 1, 1, 2, 0}, hi[] = {1, 2, 1, 1, 3, 2, 2};
+  std::vector<KdEvent> ev;
+  for (uint32_t t = 0; t < 7; ++t) {
+    if (lo[t] == hi[t]) {
+      ev.push_back(kdEvent(lo[t], t, KD_EVENT_PLANAR));
+    } else {
+      ev.push_back(kdEvent(lo[t], t, KD_EVENT_START));
+      ev.push_back(kdEvent(hi[t], t, KD_EVENT_END));
+    }
+  }
+  std::sort(ev.begin(), ev.end(), kdEventLess);
+  Box3f box{{-1, 0, 0}, {4, 1, 1}};
+  KdEventCounts before{0, 0, 0};
+  std::vector<KdSplit> found;
+  for (uint32_t i = 0; i < ev.size(); ++i) {
+    KdSplit s = evaluateEvent(ev.data(), i, 0, static_cast<uint32_t>(ev.size()), before, 7, box, 0);
+    if (s.axis >= 0) found.push_back(s);
+    before = before + countsOf(ev[i]);
+  }
+  // positions 0, 1, 2, 3 once each; left = min < p or flat at p, right = max > p
+  ASSERT_EQ(found.size(), 4u);
+  const uint32_t wantLeft[] = {0, 4, 7, 7}, wantRight[] = {7, 4, 1, 0};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(found[k].pos, static_cast<float>(k));
+    EXPECT_EQ(found[k].left, wantLeft[k]) << "at " << k;
+    EXPECT_EQ(found[k].right, wantRight[k]) << "at " << k;
+  }
+}
+
 TEST(KdTreeCli, BadInputIsOneLineWithStatus2AndAGoodRunPrintsTheTree) {
   std::string d = test::tempDir("kdtree_cli");
   std::filesystem::create_directories(d);
@@ -349,6 +399,9 @@ TEST(KdTreeCli, BadInputIsOneLineWithStatus2AndAGoodRunPrintsTheTree) {
       std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("500 through the box"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("level-by-level build"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the same tree as the sequential builder's"), std::string::npos)
+      << r.output;
 }
 
 }  // namespace gvdp::detail

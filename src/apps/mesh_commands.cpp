@@ -65,9 +65,10 @@ Timed timeBuilds(const Mesh& mesh, int64_t repeat, Build build) {
   return t;
 }
 
-void printTree(const char* name, const Timed& t, int64_t repeat) {
+void printTree(const std::string& label, const Timed& t, int64_t repeat) {
   KdTreeStats s = kdTreeStats(t.tree);
-  std::printf("%s build: %.1f ms (median of %lld)\n", name, t.ms, static_cast<long long>(repeat));
+  std::printf("%s: %.1f ms (median of %lld)\n", label.c_str(), t.ms,
+              static_cast<long long>(repeat));
   std::printf(
       "  SAH cost %.3f, %zu nodes, %zu leaves (%zu empty), max depth %d, %.2f triangles per "
       "leaf\n",
@@ -78,18 +79,35 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
   GVDP_INPUT_CHECK(repeat >= 1 && repeat <= MAX_REPEAT, "--repeat ", repeat, " (expected 1..",
                    MAX_REPEAT, ")");
   GVDP_INPUT_CHECK(rays >= 1 && rays <= MAX_RAYS, "--rays ", rays, " (expected 1..", MAX_RAYS, ")");
-  GVDP_INPUT_CHECK(builders == "sequential", "--builders '", builders, "' (expected sequential)");
+  bool sequentialOnly = builders == "sequential", levelOnly = builders == "level";
+  GVDP_INPUT_CHECK(sequentialOnly || levelOnly || builders == "all", "--builders '", builders,
+                   "' (expected sequential, level or all)");
   Mesh mesh = readMesh(path);
   placeMesh(mesh);
   std::printf("mesh: %s, %zu triangles, %zu vertices (placed: longest side %.1f)\n", path.c_str(),
               mesh.triangleCount(), mesh.vertices.size(), static_cast<double>(MESH_PLACED_SIZE));
-  Timed seq = timeBuilds(mesh, repeat, buildKdTreeSequential);
-  printTree("sequential", seq, repeat);
+  Timed seq, level;
+  if (!levelOnly) {
+    seq = timeBuilds(mesh, repeat, buildKdTreeSequential);
+    printTree("sequential build", seq, repeat);
+  }
+  if (!sequentialOnly) {
+    level = timeBuilds(mesh, repeat, buildKdTreeParallel);
+    printTree("level-by-level build (pool of " + std::to_string(ThreadPool::global().size()) +
+                  " threads)",
+              level, repeat);
+    if (!levelOnly) {
+      std::string why;
+      GVDP_CHECK(sameTree(seq.tree, level.tree, &why), "the builders' trees differ ", why);
+      std::printf("  the same tree as the sequential builder's (sameTree)\n");
+    }
+  }
+  const KdTree& tree = levelOnly ? level.tree : seq.tree;
 
-  std::vector<Ray> rs = randomRays(seq.tree.bounds, rays);
+  std::vector<Ray> rs = randomRays(tree.bounds, rays);
   MeshView mv{mesh.vertices.data(), mesh.indices.data(),
               static_cast<uint32_t>(mesh.triangleCount())};
-  KdTreeView tv = seq.tree.view();
+  KdTreeView tv = tree.view();
   std::vector<uint32_t> hitsOne(rs.size()), hitsPool(rs.size());
   auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < rs.size(); ++i) hitsOne[i] = closestHit(rs[i], tv, mv).triangle;
@@ -146,7 +164,9 @@ MeshCommands::MeshCommands(CLI::App& app) {
   kdtree_->add_option("--mesh", kdMesh_, "the mesh (.off, .ply, .obj)")->required();
   kdtree_->add_option("--repeat", repeat_, "builds timed (the median is printed; default 3)");
   kdtree_->add_option("--rays", rays_, "random rays cast (default 200000)");
-  kdtree_->add_option("--builders", builders_, "sequential (default all: every builder)");
+  kdtree_->add_option("--builders", builders_,
+                      "sequential, level (seed 004's level by level, on the pool) or all "
+                      "(default: both, their trees compared)");
 }
 
 std::optional<int> MeshCommands::runParsed() const {
@@ -158,8 +178,7 @@ std::optional<int> MeshCommands::runParsed() const {
                      " (commands: subdivide)");
   }
   if (subdivide_->parsed()) return runSubdivide(in_, out_, times_);
-  if (kdtree_->parsed())
-    return runKdTree(kdMesh_, builders_ == "all" ? "sequential" : builders_, repeat_, rays_);
+  if (kdtree_->parsed()) return runKdTree(kdMesh_, builders_, repeat_, rays_);
   return std::nullopt;
 }
 

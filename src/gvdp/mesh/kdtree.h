@@ -197,6 +197,44 @@ GVDP_HD GVDP_INLINE bool shouldSplit(Box3f box, uint32_t triangles, int depth,
          best.axis >= 0 && best.cost < sahLeafCost(triangles);
 }
 
+// The sweep as a per-event rule (the level-by-level builder's; the sequential sweep visits the
+// same planes with the same counts). `before` counts the START, PLANAR and END events of the
+// node's list before event i (an exclusive scan). A position p is evaluated once: at its first
+// START event with the counts before it, or, where p has no START, at its last event with the
+// counts including it; either way the ENDs and PLANARs at p are counted and the STARTs at p not,
+// so left = STARTs before p + PLANARs up to p, right = n - ENDs and PLANARs up to p.
+struct KdEventCounts {
+  uint32_t start, planar, end;
+};
+GVDP_HD GVDP_INLINE KdEventCounts operator+(KdEventCounts a, KdEventCounts b) {
+  return {a.start + b.start, a.planar + b.planar, a.end + b.end};
+}
+GVDP_HD GVDP_INLINE KdEventCounts operator-(KdEventCounts a, KdEventCounts b) {
+  return {a.start - b.start, a.planar - b.planar, a.end - b.end};
+}
+GVDP_HD GVDP_INLINE KdEventCounts countsOf(KdEvent e) {
+  uint32_t t = eventType(e);
+  return {t == KD_EVENT_START ? 1u : 0u, t == KD_EVENT_PLANAR ? 1u : 0u,
+          t == KD_EVENT_END ? 1u : 0u};
+}
+// Events [begin, end) of one node on `axis`, sorted; i in it; n the node's triangles.
+GVDP_HD GVDP_INLINE KdSplit evaluateEvent(const KdEvent* ev, uint32_t i, uint32_t begin,
+                                          uint32_t end, KdEventCounts before, uint32_t n, Box3f box,
+                                          int axis) {
+  KdEvent e = ev[i];
+  if (eventType(e) == KD_EVENT_START) {
+    bool firstStart =
+        i == begin || ev[i - 1].pos != e.pos || eventType(ev[i - 1]) != KD_EVENT_START;
+    if (!firstStart) return noSplit();
+  } else {
+    bool lastOfPosition = i + 1 == end || ev[i + 1].pos != e.pos;
+    if (!lastOfPosition) return noSplit();
+    before = before + countsOf(e);
+  }
+  return evaluateSplit(box, axis, e.pos, before.start + before.planar,
+                       n - before.end - before.planar);
+}
+
 // Where an event's triangle goes for the split (axis, p), event on that axis: bit 0 left,
 // bit 1 right; a triangle's sides are the OR over its events (its START says left when min < p,
 // its END says right when max > p; a PLANAR event both at once). The seed's per-event rule.

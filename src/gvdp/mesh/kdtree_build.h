@@ -26,4 +26,9 @@ Box3f kdRootBox(const std::vector<Box3f>& boxes);
 // in order (no clipping, so no re-sorting). Nodes are stored depth first.
 KdTree buildKdTreeSequential(const Mesh& mesh);
 
+// Seed 004's level-by-level builder on the thread pool: all nodes of a level together, in sorts,
+// scans and segmented reductions over flat arrays (kdtree_parallel.cpp), the steps a GPU builder
+// makes with CUB. Nodes are stored level by level; the tree is sameTree as the sequential one.
+KdTree buildKdTreeParallel(const Mesh& mesh);
+
 }  // namespace gvdp::detail
