@@ -57,7 +57,11 @@ GVDP_HD GVDP_INLINE MeshHit closestHitBruteForce(const Ray& r, MeshView mesh) {
   return best;
 }
 
-// The ray's interval inside a box (slab test); false when it misses.
+// The ray's interval inside a box (slab test); false when it misses. The far distance grows by
+// 2 gamma(3) (pbrt-v3 3.9.2: the rounding bound of the slab distances), so a ray that enters
+// exactly at an edge or corner, whose rounded entry can pass its rounded exit by an ulp, is kept.
+constexpr float KD_SLAB_GROWTH =
+    1.0f + 2.0f * (3.0f * 5.96046448e-8f) / (1.0f - 3.0f * 5.96046448e-8f);
 GVDP_HD GVDP_INLINE bool rayBoxInterval(const Ray& r, Vec3f invD, Box3f b, float& t0, float& t1) {
   t0 = 0.0f;
   t1 = std::numeric_limits<float>::infinity();
@@ -70,6 +74,7 @@ GVDP_HD GVDP_INLINE bool rayBoxInterval(const Ray& r, Vec3f invD, Box3f b, float
       c = s;
     }
     // NaN (a zero direction on a face plane) leaves the interval as it is
+    c = c * KD_SLAB_GROWTH;
     t0 = a > t0 ? a : t0;
     t1 = c < t1 ? c : t1;
     if (t0 > t1) return false;
