@@ -46,6 +46,11 @@ std::vector<Ray> randomRays(Box3f box, int64_t count) {
   return rays;
 }
 
+std::string poolName() {
+  int n = ThreadPool::global().size();
+  return "pool of " + std::to_string(n) + (n == 1 ? " thread" : " threads");
+}
+
 struct Timed {
   double ms = 0.0;
   KdTree tree;
@@ -93,9 +98,7 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
   }
   if (!sequentialOnly) {
     level = timeBuilds(mesh, repeat, buildKdTreeParallel);
-    printTree("level-by-level build (pool of " + std::to_string(ThreadPool::global().size()) +
-                  " threads)",
-              level, repeat);
+    printTree("level-by-level build (" + poolName() + ")", level, repeat);
     if (!levelOnly) {
       std::string why;
       GVDP_CHECK(sameTree(seq.tree, level.tree, &why), "the builders' trees differ ", why);
@@ -121,11 +124,9 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
   GVDP_CHECK(hitsOne == hitsPool, "the pool's ray casts differ from one thread's");
   size_t hits = static_cast<size_t>(
       std::count_if(hitsOne.begin(), hitsOne.end(), [](uint32_t t) { return t != KD_NO_HIT; }));
-  std::printf(
-      "rays: %zu through the box, %zu hit; 1 thread %.3f Mrays/s, pool of %d threads %.3f "
-      "Mrays/s\n",
-      rs.size(), hits, static_cast<double>(rs.size()) / oneMs / 1e3, ThreadPool::global().size(),
-      static_cast<double>(rs.size()) / poolMs / 1e3);
+  std::printf("rays: %zu through the box, %zu hit; 1 thread %.3f Mrays/s, %s %.3f Mrays/s\n",
+              rs.size(), hits, static_cast<double>(rs.size()) / oneMs / 1e3, poolName().c_str(),
+              static_cast<double>(rs.size()) / poolMs / 1e3);
   return 0;
 }
 
