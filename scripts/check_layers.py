@@ -10,7 +10,7 @@ import re
 import sys
 
 # Bottom to top.
-LAYERS = ["base", "profile", "world", "render", "cache", "sched", "tiles", "api", "bench", "io", "serve"]
+LAYERS = ["base", "mesh", "profile", "world", "render", "cache", "sched", "tiles", "api", "bench", "io", "serve"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"gvdp/(?:([a-z_]+)/|[a-z_]+\.h")')
 
 repo = pathlib.Path(__file__).resolve().parent.parent

@@ -1,6 +1,6 @@
-// The gvdp command line: render, scenes, info (docs/DESIGN.md "Command line contract").
-// Library code throws; this is the one place that turns an exception into a message and an
-// exit status: 2 for bad input, 1 for internal failures.
+// The gvdp command line: render, scenes, info, mesh, kdtree (docs/DESIGN.md "Command line
+// contract"). Library code throws; this is the one place that turns an exception into a message and
+// an exit status: 2 for bad input, 1 for internal failures.
 #include <pthread.h>
 #include <unistd.h>
 
@@ -28,6 +28,7 @@
 #include "gvdp/io/video.h"
 #include "gvdp/sched/memory_estimate.h"
 #include "gvdp/serve/server.h"
+#include "mesh_commands.h"
 
 namespace gvdp::detail {
 namespace {
@@ -661,6 +662,7 @@ int run(int argc, char** argv) {
   serveCmd->add_option("--quality", serve.quality, "JPEG quality, 1..100 (default 80)");
   CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes");
   CLI::App* infoCmd = app.add_subcommand("info", "build, devices and defaults");
+  MeshCommands meshCommands(app);
   if (argc > 1 && argv[1][0] != '-') {
     std::string command = argv[1], names;
     bool known = false;
@@ -686,6 +688,7 @@ int run(int argc, char** argv) {
   if (serveCmd->parsed()) return runServe(serve);
   if (scenesCmd->parsed()) return runScenes();
   if (infoCmd->parsed()) return runInfo();
+  if (std::optional<int> status = meshCommands.runParsed()) return *status;
   return 2;
 }
 

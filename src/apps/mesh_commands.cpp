@@ -1,0 +1,186 @@
+// gvdp mesh subdivide / gvdp kdtree (mesh_commands.h). Figures printed by kdtree: the build time
+// is the median of --repeat builds; rays go from a sphere around the mesh's box (radius: the
+// box's diagonal) to uniform points inside it, the same rays for one thread and for the pool.
+#include "mesh_commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "gvdp/base/error.h"
+#include "gvdp/base/parallel.h"
+#include "gvdp/mesh/kdtree_build.h"
+#include "gvdp/mesh/kdtree_raycast.h"
+#include "gvdp/mesh/kdtree_stats.h"
+#include "gvdp/mesh/mesh_io.h"
+#include "gvdp/mesh/mesh_subdivide.h"
+
+namespace gvdp::detail {
+namespace {
+
+constexpr int MAX_TIMES = 8;
+constexpr int64_t MAX_REPEAT = 1000;
+constexpr int64_t MAX_RAYS = 100000000;
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+std::vector<Ray> randomRays(Box3f box, int64_t count) {
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Vec3f centre = (box.lo + box.hi) * 0.5f, size = box.hi - box.lo;
+  float radius = std::max(length(size), 1e-6f);
+  std::vector<Ray> rays(static_cast<size_t>(count));
+  for (Ray& r : rays) {
+    Vec3f dir{0.0f, 0.0f, 0.0f};
+    while (dot(dir, dir) < 1e-4f || dot(dir, dir) > 1.0f)
+      dir = {2.0f * u(rng) - 1.0f, 2.0f * u(rng) - 1.0f, 2.0f * u(rng) - 1.0f};
+    r.o = centre + normalize(dir) * radius;
+    Vec3f target = box.lo + Vec3f{u(rng), u(rng), u(rng)} * size;
+    r.d = normalize(target - r.o);
+  }
+  return rays;
+}
+
+std::string poolName() {
+  int n = ThreadPool::global().size();
+  return "pool of " + std::to_string(n) + (n == 1 ? " thread" : " threads");
+}
+
+struct Timed {
+  double ms = 0.0;
+  KdTree tree;
+};
+
+template <class Build>
+Timed timeBuilds(const Mesh& mesh, int64_t repeat, Build build) {
+  std::vector<double> ms;
+  Timed t;
+  for (int64_t i = 0; i < repeat; ++i) {
+    auto start = std::chrono::steady_clock::now();
+    t.tree = build(mesh);
+    ms.push_back(msSince(start));
+  }
+  std::sort(ms.begin(), ms.end());
+  t.ms = ms[ms.size() / 2];
+  return t;
+}
+
+void printTree(const std::string& label, const Timed& t, int64_t repeat) {
+  KdTreeStats s = kdTreeStats(t.tree);
+  std::printf("%s: %.1f ms (median of %lld)\n", label.c_str(), t.ms,
+              static_cast<long long>(repeat));
+  std::printf(
+      "  SAH cost %.3f, %zu nodes, %zu leaves (%zu empty), max depth %d, %.2f triangles per "
+      "leaf\n",
+      s.sahCost, s.nodes, s.leaves, s.emptyLeaves, s.maxDepth, s.meanLeafTriangles);
+}
+
+int runKdTree(const std::string& path, const std::string& builders, int64_t repeat, int64_t rays) {
+  GVDP_INPUT_CHECK(repeat >= 1 && repeat <= MAX_REPEAT, "--repeat ", repeat, " (expected 1..",
+                   MAX_REPEAT, ")");
+  GVDP_INPUT_CHECK(rays >= 1 && rays <= MAX_RAYS, "--rays ", rays, " (expected 1..", MAX_RAYS, ")");
+  bool sequentialOnly = builders == "sequential", levelOnly = builders == "level";
+  GVDP_INPUT_CHECK(sequentialOnly || levelOnly || builders == "all", "--builders '", builders,
+                   "' (expected sequential, level or all)");
+  Mesh mesh = readMesh(path);
+  placeMesh(mesh);
+  std::printf("mesh: %s, %zu triangles, %zu vertices (placed: longest side %.1f)\n", path.c_str(),
+              mesh.triangleCount(), mesh.vertices.size(), static_cast<double>(MESH_PLACED_SIZE));
+  Timed seq, level;
+  if (!levelOnly) {
+    seq = timeBuilds(mesh, repeat, buildKdTreeSequential);
+    printTree("sequential build", seq, repeat);
+  }
+  if (!sequentialOnly) {
+    level = timeBuilds(mesh, repeat, buildKdTreeParallel);
+    printTree("level-by-level build (" + poolName() + ")", level, repeat);
+    if (!levelOnly) {
+      std::string why;
+      GVDP_CHECK(sameTree(seq.tree, level.tree, &why), "the builders' trees differ ", why);
+      std::printf("  the same tree as the sequential builder's (sameTree)\n");
+    }
+  }
+  const KdTree& tree = levelOnly ? level.tree : seq.tree;
+
+  std::vector<Ray> rs = randomRays(tree.bounds, rays);
+  MeshView mv{mesh.vertices.data(), mesh.indices.data(),
+              static_cast<uint32_t>(mesh.triangleCount())};
+  KdTreeView tv = tree.view();
+  std::vector<uint32_t> hitsOne(rs.size()), hitsPool(rs.size());
+  auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < rs.size(); ++i) hitsOne[i] = closestHit(rs[i], tv, mv).triangle;
+  double oneMs = msSince(start);
+  start = std::chrono::steady_clock::now();
+  parallelFor(
+      static_cast<int64_t>(rs.size()),
+      [&](int64_t i) { hitsPool[static_cast<size_t>(i)] = closestHit(rs[i], tv, mv).triangle; },
+      256);
+  double poolMs = msSince(start);
+  GVDP_CHECK(hitsOne == hitsPool, "the pool's ray casts differ from one thread's");
+  size_t hits = static_cast<size_t>(
+      std::count_if(hitsOne.begin(), hitsOne.end(), [](uint32_t t) { return t != KD_NO_HIT; }));
+  std::printf("rays: %zu through the box, %zu hit; 1 thread %.3f Mrays/s, %s %.3f Mrays/s\n",
+              rs.size(), hits, static_cast<double>(rs.size()) / oneMs / 1e3, poolName().c_str(),
+              static_cast<double>(rs.size()) / poolMs / 1e3);
+  return 0;
+}
+
+int runSubdivide(const std::string& in, const std::string& out, int times) {
+  GVDP_INPUT_CHECK(times >= 1 && times <= MAX_TIMES, "--times ", times, " (expected 1..", MAX_TIMES,
+                   ")");
+  std::string ext = out.size() >= 4 ? out.substr(out.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  GVDP_INPUT_CHECK(ext == ".ply", out, ": the output must be a .ply file");
+  Mesh mesh = readMesh(in);
+  GVDP_INPUT_CHECK(mesh.triangleCount() << (2 * times) < (size_t{1} << 30), in, ": ",
+                   mesh.triangleCount(), " triangles subdivided ", times,
+                   " times would be over 2^30 triangles");
+  auto start = std::chrono::steady_clock::now();
+  Mesh fine = subdivide(mesh, times);
+  double ms = msSince(start);
+  writePly(fine, out);
+  std::printf("%s: %zu triangles -> %s: %zu triangles, %zu vertices (%.0f ms)\n", in.c_str(),
+              mesh.triangleCount(), out.c_str(), fine.triangleCount(), fine.vertices.size(), ms);
+  return 0;
+}
+
+}  // namespace
+
+MeshCommands::MeshCommands(CLI::App& app) {
+  mesh_ = app.add_subcommand("mesh", "mesh tools: subdivide");
+  mesh_->allow_extras();  // an unknown mesh command is refused by runParsed, naming it
+  subdivide_ = mesh_->add_subcommand(
+      "subdivide", "1-to-4 midpoint subdivision, N times (triangles x 4^N), to binary PLY");
+  subdivide_->add_option("--times", times_, "subdivisions, 1.." + std::to_string(MAX_TIMES));
+  subdivide_->add_option("in", in_, "the mesh (.off, .ply, .obj)")->required();
+  subdivide_->add_option("out", out_, "the result (.ply, binary)")->required();
+  kdtree_ = app.add_subcommand(
+      "kdtree", "build a mesh's full-SAH kd-tree (Wald-Havran), time it and its ray casts");
+  kdtree_->add_option("--mesh", kdMesh_, "the mesh (.off, .ply, .obj)")->required();
+  kdtree_->add_option("--repeat", repeat_, "builds timed (the median is printed; default 3)");
+  kdtree_->add_option("--rays", rays_, "random rays cast (default 200000)");
+  kdtree_->add_option("--builders", builders_,
+                      "sequential, level (seed 004's level by level, on the pool) or all "
+                      "(default: both, their trees compared)");
+}
+
+std::optional<int> MeshCommands::runParsed() const {
+  if (mesh_->parsed() && !subdivide_->parsed()) {
+    std::vector<std::string> rest = mesh_->remaining();
+    GVDP_INPUT_CHECK(false,
+                     rest.empty() ? std::string("gvdp mesh needs a command")
+                                  : "unknown mesh command '" + rest[0] + "'",
+                     " (commands: subdivide)");
+  }
+  if (subdivide_->parsed()) return runSubdivide(in_, out_, times_);
+  if (kdtree_->parsed()) return runKdTree(kdMesh_, builders_, repeat_, rays_);
+  return std::nullopt;
+}
+
+}  // namespace gvdp::detail

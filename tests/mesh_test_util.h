@@ -1,0 +1,69 @@
+// Small meshes made in the tests (never downloaded data): a cube (flat, axis-aligned triangles),
+// an icosphere, a random triangle soup; and the closed-mesh check.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <utility>
+
+#include "gvdp/mesh/mesh.h"
+#include "gvdp/mesh/mesh_subdivide.h"
+
+namespace gvdp::detail::test {
+
+// The cube [lo, lo + size]^3: 8 vertices, 12 triangles, outward facing, closed.
+inline Mesh cubeMesh(float lo = -1.0f, float size = 2.0f) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({lo + size * (i & 1), lo + size * ((i >> 1) & 1), lo + size * (i >> 2)});
+  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads)
+    m.indices.insert(m.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+  return m;
+}
+
+// An icosahedron subdivided `times` times, its vertices pushed to the unit sphere.
+inline Mesh icosphere(int times) {
+  const float t = 1.6180339887f;
+  Mesh m;
+  m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.indices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+  m = subdivide(m, times);
+  for (Vec3f& v : m.vertices) v = normalize(v);
+  return m;
+}
+
+// `n` random triangles in [0, 1]^3 of sizes up to `size`; a few of them flat on a grid plane.
+inline Mesh randomSoup(int n, float size, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Mesh m;
+  for (int i = 0; i < n; ++i) {
+    Vec3f c{u(rng), u(rng), u(rng)};
+    for (int k = 0; k < 3; ++k) {
+      Vec3f v = c + Vec3f{u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f} * size;
+      if (i % 7 == 0) v.z = 0.25f * static_cast<float>(i % 4);  // flat in z at a shared plane
+      m.vertices.push_back(v);
+      m.indices.push_back(static_cast<uint32_t>(m.vertices.size() - 1));
+    }
+  }
+  return m;
+}
+
+// Closed and consistently oriented: every directed edge appears once and its reverse once.
+inline bool isClosed(const Mesh& m) {
+  std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  for (size_t t = 0; t < m.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) ++directed[{m.indices[3 * t + k], m.indices[3 * t + (k + 1) % 3]}];
+  return std::all_of(directed.begin(), directed.end(), [&](const auto& e) {
+    auto back = directed.find({e.first.second, e.first.first});
+    return e.second == 1 && back != directed.end() && back->second == 1;
+  });
+}
+
+}  // namespace gvdp::detail::test
