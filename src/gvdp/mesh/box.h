@@ -1,48 +1,18 @@
 // Axis-aligned boxes and the float arithmetic the kd-tree's rules are written in.
 // Every operation the SAH, the event order and the traversal depend on is a correctly rounded
-// IEEE single-precision operation written out one at a time: roundedMul/roundedAdd/roundedDiv are
-// __fmul_rn,
-// __fadd_rn and __fdiv_rn on the GPU (nvcc would otherwise contract a * b + c into one FMA, one
-// rounding instead of two) and the plain operators on the host, where the mesh sources are
-// compiled with -ffp-contract=off (src/CMakeLists.txt). A CPU and a GPU builder therefore compute
-// the same bits for the same inputs, so they pick the same splits.
+// IEEE single-precision operation written out one at a time (base/rounded_math.h: roundedMul,
+// roundedAdd, roundedSub, roundedDiv), and the mesh sources are compiled with -ffp-contract=off
+// (src/CMakeLists.txt). A CPU and a GPU builder therefore compute the same bits for the same
+// inputs, so they pick the same splits.
 #pragma once
 
 #include <cstdint>
 
 #include "gvdp/base/defs.h"
+#include "gvdp/base/rounded_math.h"
 #include "gvdp/base/vecmath.h"
 
 namespace gvdp::detail {
-
-GVDP_HD GVDP_INLINE float roundedMul(float a, float b) {
-#if GVDP_IS_GPU_CODE
-  return __fmul_rn(a, b);
-#else
-  return a * b;
-#endif
-}
-GVDP_HD GVDP_INLINE float roundedAdd(float a, float b) {
-#if GVDP_IS_GPU_CODE
-  return __fadd_rn(a, b);
-#else
-  return a + b;
-#endif
-}
-GVDP_HD GVDP_INLINE float roundedSub(float a, float b) {
-#if GVDP_IS_GPU_CODE
-  return __fsub_rn(a, b);
-#else
-  return a - b;
-#endif
-}
-GVDP_HD GVDP_INLINE float roundedDiv(float a, float b) {
-#if GVDP_IS_GPU_CODE
-  return __fdiv_rn(a, b);
-#else
-  return a / b;
-#endif
-}
 
 // Component `axis` (0 x, 1 y, 2 z) of a vector.
 GVDP_HD GVDP_INLINE float component(Vec3f v, int axis) {

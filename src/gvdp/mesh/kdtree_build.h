@@ -20,6 +20,9 @@ struct KdTree {
 // Every triangle's kdTriangleBox, and the union of them (the root's box).
 std::vector<Box3f> kdTriangleBoxes(const Mesh& mesh);
 Box3f kdRootBox(const std::vector<Box3f>& boxes);
+// The root's events along `axis` (a planar event for a flat extent, else a start and an end per
+// triangle), sorted by kdEventLess: both builders start from them.
+std::vector<KdEvent> kdRootEvents(const std::vector<Box3f>& boxes, int axis);
 
 // Wald and Havran's O(N log N) builder, one thread: events sorted once per axis; each node
 // sweeps its three sorted lists for the best plane, then splits them into its children's lists

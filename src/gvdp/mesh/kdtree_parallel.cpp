@@ -50,18 +50,7 @@ Level rootLevel(const std::vector<Box3f>& boxes, Box3f bounds) {
       [&](int64_t a) {
         int axis = static_cast<int>(a);
         std::vector<KdEvent>& ev = l.ev[axis];
-        ev.reserve(2 * boxes.size());
-        for (int64_t t = 0; t < n; ++t) {
-          float lo = component(boxes[t].lo, axis), hi = component(boxes[t].hi, axis);
-          auto tri = static_cast<uint32_t>(t);
-          if (lo == hi) {
-            ev.push_back(kdEvent(lo, tri, KD_EVENT_PLANAR));
-          } else {
-            ev.push_back(kdEvent(lo, tri, KD_EVENT_START));
-            ev.push_back(kdEvent(hi, tri, KD_EVENT_END));
-          }
-        }
-        std::sort(ev.begin(), ev.end(), kdEventLess);  // the GPU: a radix sort on eventKey
+        ev = kdRootEvents(boxes, axis);
         l.evBegin[axis] = {0, static_cast<uint32_t>(ev.size())};
         l.evOwner[axis].assign(ev.size(), 0);
       },

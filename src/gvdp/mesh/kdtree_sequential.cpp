@@ -17,6 +17,23 @@ std::vector<Box3f> kdTriangleBoxes(const Mesh& mesh) {
   return boxes;
 }
 
+std::vector<KdEvent> kdRootEvents(const std::vector<Box3f>& boxes, int axis) {
+  std::vector<KdEvent> ev;
+  ev.reserve(2 * boxes.size());
+  for (size_t t = 0; t < boxes.size(); ++t) {
+    float lo = component(boxes[t].lo, axis), hi = component(boxes[t].hi, axis);
+    auto tri = static_cast<uint32_t>(t);
+    if (lo == hi) {
+      ev.push_back(kdEvent(lo, tri, KD_EVENT_PLANAR));
+    } else {
+      ev.push_back(kdEvent(lo, tri, KD_EVENT_START));
+      ev.push_back(kdEvent(hi, tri, KD_EVENT_END));
+    }
+  }
+  std::sort(ev.begin(), ev.end(), kdEventLess);  // the GPU: a radix sort on eventKey
+  return ev;
+}
+
 Box3f kdRootBox(const std::vector<Box3f>& boxes) {
   Box3f b = emptyBox();
   for (const Box3f& t : boxes) b = merge(b, t);
@@ -98,21 +115,7 @@ KdTree buildKdTreeSequential(const Mesh& mesh) {
   KdTree tree;
   tree.bounds = kdRootBox(boxes);
   Events events;
-  for (int axis = 0; axis < 3; ++axis) {
-    std::vector<KdEvent>& ev = events[axis];
-    ev.reserve(2 * boxes.size());
-    for (size_t t = 0; t < boxes.size(); ++t) {
-      float lo = component(boxes[t].lo, axis), hi = component(boxes[t].hi, axis);
-      auto tri = static_cast<uint32_t>(t);
-      if (lo == hi) {
-        ev.push_back(kdEvent(lo, tri, KD_EVENT_PLANAR));
-      } else {
-        ev.push_back(kdEvent(lo, tri, KD_EVENT_START));
-        ev.push_back(kdEvent(hi, tri, KD_EVENT_END));
-      }
-    }
-    std::sort(ev.begin(), ev.end(), kdEventLess);
-  }
+  for (int axis = 0; axis < 3; ++axis) events[axis] = kdRootEvents(boxes, axis);
   tree.nodes.resize(1);
   Builder builder{tree, std::vector<uint8_t>(boxes.size(), 0)};
   builder.build(0, tree.bounds, std::move(events), 0);

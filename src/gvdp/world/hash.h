@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "gvdp/base/rounded_math.h"
 #include "gvdp/base/vecmath.h"
 
 namespace gvdp::detail {
@@ -33,21 +34,13 @@ GVDP_HD GVDP_INLINE float hash3Unit(int x, int y, int z, uint32_t seed) {
   return toUnit(hash3(x, y, z, seed));
 }
 
-// Multiply and add rounded separately: nvcc would otherwise fuse them into FMAs that round
-// differently from the CPU, and the sin-hash below amplifies any difference 43758 times.
-GVDP_HD GVDP_INLINE float mulRn(float a, float b) {
-#if GVDP_IS_GPU_CODE
-  return __fmul_rn(a, b);
-#else
-  return a * b;
-#endif
-}
-
 // The classic shader sin-hash, fract(sin(dot(p, k)) * 43758.5453), in [0, 1). The argument is
-// computed without contraction so that both backends take the sine of the same float.
+// computed without contraction (base/rounded_math.h) so that both backends take the sine of the
+// same float: the hash amplifies any difference 43758 times.
 GVDP_HD GVDP_INLINE float sinHash(float a, float b, float c, float k) {
-  float arg = mulRn(a, 12.9898f) + mulRn(b, 78.233f) + mulRn(c, 37.719f) + mulRn(k, 4.581f);
-  float s = mulRn(sinf(arg), 43758.5453f);
+  float arg = roundedMul(a, 12.9898f) + roundedMul(b, 78.233f) + roundedMul(c, 37.719f) +
+              roundedMul(k, 4.581f);
+  float s = roundedMul(sinf(arg), 43758.5453f);
   return s - floorf(s);
 }
 
