@@ -25,30 +25,11 @@ struct Named {
   Mesh mesh;
 };
 
-// Flat squares (grids of 4x4 quads) stacked at z = 0, 0.2, ..., 1: splits land in their planes.
-Mesh stackedSquares() {
-  Mesh m;
-  for (int level = 0; level < 6; ++level) {
-    auto base = static_cast<uint32_t>(m.vertices.size());
-    float z = 0.2f * static_cast<float>(level), shift = 0.05f * static_cast<float>(level);
-    for (int j = 0; j <= 4; ++j)
-      for (int i = 0; i <= 4; ++i)
-        m.vertices.push_back(
-            {shift + 0.25f * static_cast<float>(i), 0.25f * static_cast<float>(j), z});
-    for (uint32_t j = 0; j < 4; ++j)
-      for (uint32_t i = 0; i < 4; ++i) {
-        uint32_t a = base + 5 * j + i;
-        m.indices.insert(m.indices.end(), {a, a + 1, a + 6, a, a + 6, a + 5});
-      }
-  }
-  return m;
-}
-
 std::vector<Named> testMeshes() {
   std::vector<Named> m;
   m.push_back({"cube", test::cubeMesh()});  // a leaf: no candidate inside its box
   m.push_back({"subdivided cube", subdivide(test::cubeMesh(), 3)});  // many coplanar flats
-  m.push_back({"stacked squares", stackedSquares()});
+  m.push_back({"stacked squares", test::stackedSquares()});
   m.push_back({"icosphere", test::icosphere(3)});
   m.push_back({"soup", test::randomSoup(3000, 0.1f, 7)});
   m.push_back({"large soup", test::randomSoup(800, 0.6f, 11)});
@@ -381,6 +362,13 @@ TEST(KdTreeCli, BadInputIsOneLineWithStatus2AndAGoodRunPrintsTheTree) {
   expectInputError("mesh subdivide " + cube, "out");
   expectInputError("mesh frobnicate", "'frobnicate'");
   expectInputError("mesh", "subdivide");
+  expectInputError("mesh sphere --times 9 " + d + "/sphere.ply", "--times 9");
+  expectInputError("mesh sphere --times 2 " + d + "/sphere.off", "must be a .ply");
+  test::CommandResult sphere = test::runGvdp("mesh sphere --times 2 " + d + "/sphere.ply");
+  ASSERT_EQ(sphere.status, 0) << sphere.output;
+  Mesh icosphere = readMesh(d + "/sphere.ply");
+  EXPECT_EQ(icosphere.triangleCount(), 20u * 16u);
+  EXPECT_TRUE(test::isClosed(icosphere));
 
   test::CommandResult sub =
       test::runGvdp("mesh subdivide --times 2 " + cube + " " + d + "/cube16.ply");

@@ -1,5 +1,5 @@
 // Small meshes made in the tests (never downloaded data): a cube (flat, axis-aligned triangles),
-// an icosphere, a random triangle soup; and the closed-mesh check.
+// an icosphere, a random triangle soup, stacked flat squares; and the closed-mesh check.
 #pragma once
 
 #include <algorithm>
@@ -51,6 +51,25 @@ inline Mesh randomSoup(int n, float size, uint32_t seed) {
       m.vertices.push_back(v);
       m.indices.push_back(static_cast<uint32_t>(m.vertices.size() - 1));
     }
+  }
+  return m;
+}
+
+// Flat squares (grids of 4x4 quads) stacked at z = 0, 0.2, ..., 1: splits land in their planes.
+inline Mesh stackedSquares() {
+  Mesh m;
+  for (int level = 0; level < 6; ++level) {
+    auto base = static_cast<uint32_t>(m.vertices.size());
+    float z = 0.2f * static_cast<float>(level), shift = 0.05f * static_cast<float>(level);
+    for (int j = 0; j <= 4; ++j)
+      for (int i = 0; i <= 4; ++i)
+        m.vertices.push_back(
+            {shift + 0.25f * static_cast<float>(i), 0.25f * static_cast<float>(j), z});
+    for (uint32_t j = 0; j < 4; ++j)
+      for (uint32_t i = 0; i < 4; ++i) {
+        uint32_t a = base + 5 * j + i;
+        m.indices.insert(m.indices.end(), {a, a + 1, a + 6, a, a + 6, a + 5});
+      }
   }
   return m;
 }

@@ -1,6 +1,8 @@
-// gvdp mesh subdivide / gvdp kdtree (mesh_commands.h). Figures printed by kdtree: the build time
-// is the median of --repeat builds; rays go from a sphere around the mesh's box (radius: the
-// box's diagonal) to uniform points inside it, the same rays for one thread and for the pool.
+// gvdp mesh subdivide / sphere, gvdp kdtree (mesh_commands.h). Figures printed by kdtree: the
+// build time is the median of --repeat builds (the GPU's after one warm-up build, wall clock from
+// the mesh on the host to the tree on the host); rays go from a sphere around the mesh's box
+// (radius: the box's diagonal) to uniform points inside it, the same rays for one thread and for
+// the pool.
 #include "mesh_commands.h"
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "gvdp/base/error.h"
+#include "gvdp/base/gpu.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/mesh/kdtree_build.h"
 #include "gvdp/mesh/kdtree_raycast.h"
@@ -57,9 +60,10 @@ struct Timed {
 };
 
 template <class Build>
-Timed timeBuilds(const Mesh& mesh, int64_t repeat, Build build) {
+Timed timeBuilds(const Mesh& mesh, int64_t repeat, Build build, bool warmUp = false) {
   std::vector<double> ms;
   Timed t;
+  if (warmUp) t.tree = build(mesh);
   for (int64_t i = 0; i < repeat; ++i) {
     auto start = std::chrono::steady_clock::now();
     t.tree = build(mesh);
@@ -84,19 +88,22 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
   GVDP_INPUT_CHECK(repeat >= 1 && repeat <= MAX_REPEAT, "--repeat ", repeat, " (expected 1..",
                    MAX_REPEAT, ")");
   GVDP_INPUT_CHECK(rays >= 1 && rays <= MAX_RAYS, "--rays ", rays, " (expected 1..", MAX_RAYS, ")");
-  bool sequentialOnly = builders == "sequential", levelOnly = builders == "level";
-  GVDP_INPUT_CHECK(sequentialOnly || levelOnly || builders == "all", "--builders '", builders,
-                   "' (expected sequential, level or all)");
+  bool sequentialOnly = builders == "sequential", levelOnly = builders == "level",
+       gpuOnly = builders == "gpu", all = builders == "all";
+  GVDP_INPUT_CHECK(sequentialOnly || levelOnly || gpuOnly || all, "--builders '", builders,
+                   "' (expected sequential, level, gpu or all)");
+  bool haveGpu = cudaBuilt() && cudaDeviceAvailable();
+  GVDP_INPUT_CHECK(!gpuOnly || haveGpu, "--builders gpu: no GPU (", cudaDeviceSummary(), ")");
   Mesh mesh = readMesh(path);
   placeMesh(mesh);
   std::printf("mesh: %s, %zu triangles, %zu vertices (placed: longest side %.1f)\n", path.c_str(),
               mesh.triangleCount(), mesh.vertices.size(), static_cast<double>(MESH_PLACED_SIZE));
-  Timed seq, level;
+  Timed seq, level, gpu;
   if (!levelOnly) {
     seq = timeBuilds(mesh, repeat, buildKdTreeSequential);
     printTree("sequential build", seq, repeat);
   }
-  if (!sequentialOnly) {
+  if (levelOnly || all) {
     level = timeBuilds(mesh, repeat, buildKdTreeParallel);
     printTree("level-by-level build (" + poolName() + ")", level, repeat);
     if (!levelOnly) {
@@ -104,6 +111,15 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
       GVDP_CHECK(sameTree(seq.tree, level.tree, &why), "the builders' trees differ ", why);
       std::printf("  the same tree as the sequential builder's (sameTree)\n");
     }
+  }
+  if (gpuOnly || (all && haveGpu)) {
+    gpu = timeBuilds(mesh, repeat, buildKdTreeCuda, true);
+    printTree("gpu build (after a warm-up; upload and download included)", gpu, repeat);
+    std::printf("  %.1fx the sequential build's speed\n", seq.ms / std::max(gpu.ms, 1e-6));
+    std::string why;
+    bool same = sameTree(seq.tree, gpu.tree, &why);
+    std::printf("gpu tree equals the sequential tree: %s\n", same ? "yes" : "no");
+    GVDP_CHECK(same, "the GPU builder's tree differs from the sequential one's ", why);
   }
   const KdTree& tree = levelOnly ? level.tree : seq.tree;
 
@@ -130,13 +146,17 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
   return 0;
 }
 
-int runSubdivide(const std::string& in, const std::string& out, int times) {
-  GVDP_INPUT_CHECK(times >= 1 && times <= MAX_TIMES, "--times ", times, " (expected 1..", MAX_TIMES,
-                   ")");
+void checkPlyOut(const std::string& out) {
   std::string ext = out.size() >= 4 ? out.substr(out.size() - 4) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   GVDP_INPUT_CHECK(ext == ".ply", out, ": the output must be a .ply file");
+}
+
+int runSubdivide(const std::string& in, const std::string& out, int times) {
+  GVDP_INPUT_CHECK(times >= 1 && times <= MAX_TIMES, "--times ", times, " (expected 1..", MAX_TIMES,
+                   ")");
+  checkPlyOut(out);
   Mesh mesh = readMesh(in);
   GVDP_INPUT_CHECK(mesh.triangleCount() << (2 * times) < (size_t{1} << 30), in, ": ",
                    mesh.triangleCount(), " triangles subdivided ", times,
@@ -150,35 +170,63 @@ int runSubdivide(const std::string& in, const std::string& out, int times) {
   return 0;
 }
 
+// An icosahedron subdivided `times` times, its vertices pushed to the unit sphere: 20 * 4^times
+// triangles (times 8: 1,310,720), a large mesh made anywhere.
+int runSphere(const std::string& out, int times) {
+  GVDP_INPUT_CHECK(times >= 0 && times <= MAX_TIMES, "--times ", times, " (expected 0..", MAX_TIMES,
+                   ")");
+  checkPlyOut(out);
+  const float t = 1.6180339887f;
+  Mesh m;
+  m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.indices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+  if (times > 0) m = subdivide(m, times);
+  for (Vec3f& v : m.vertices) v = normalize(v);
+  writePly(m, out);
+  std::printf("icosphere: %zu triangles, %zu vertices -> %s\n", m.triangleCount(),
+              m.vertices.size(), out.c_str());
+  return 0;
+}
+
 }  // namespace
 
 MeshCommands::MeshCommands(CLI::App& app) {
-  mesh_ = app.add_subcommand("mesh", "mesh tools: subdivide");
+  mesh_ = app.add_subcommand("mesh", "mesh tools: subdivide, sphere");
   mesh_->allow_extras();  // an unknown mesh command is refused by runParsed, naming it
   subdivide_ = mesh_->add_subcommand(
       "subdivide", "1-to-4 midpoint subdivision, N times (triangles x 4^N), to binary PLY");
   subdivide_->add_option("--times", times_, "subdivisions, 1.." + std::to_string(MAX_TIMES));
   subdivide_->add_option("in", in_, "the mesh (.off, .ply, .obj)")->required();
   subdivide_->add_option("out", out_, "the result (.ply, binary)")->required();
+  sphere_ = mesh_->add_subcommand(
+      "sphere", "an icosphere: an icosahedron subdivided N times (20 x 4^N triangles), to PLY");
+  sphere_->add_option("--times", sphereTimes_,
+                      "subdivisions, 0.." + std::to_string(MAX_TIMES) + " (default 5)");
+  sphere_->add_option("out", sphereOut_, "the result (.ply, binary)")->required();
   kdtree_ = app.add_subcommand(
       "kdtree", "build a mesh's full-SAH kd-tree (Wald-Havran), time it and its ray casts");
   kdtree_->add_option("--mesh", kdMesh_, "the mesh (.off, .ply, .obj)")->required();
   kdtree_->add_option("--repeat", repeat_, "builds timed (the median is printed; default 3)");
   kdtree_->add_option("--rays", rays_, "random rays cast (default 200000)");
   kdtree_->add_option("--builders", builders_,
-                      "sequential, level (seed 004's level by level, on the pool) or all "
-                      "(default: both, their trees compared)");
+                      "sequential, level (seed 004's level by level, on the pool), gpu (the "
+                      "same on the GPU, against the sequential) or all (default: every one "
+                      "there is, their trees compared)");
 }
 
 std::optional<int> MeshCommands::runParsed() const {
-  if (mesh_->parsed() && !subdivide_->parsed()) {
+  if (mesh_->parsed() && !subdivide_->parsed() && !sphere_->parsed()) {
     std::vector<std::string> rest = mesh_->remaining();
     GVDP_INPUT_CHECK(false,
                      rest.empty() ? std::string("gvdp mesh needs a command")
                                   : "unknown mesh command '" + rest[0] + "'",
-                     " (commands: subdivide)");
+                     " (commands: subdivide, sphere)");
   }
   if (subdivide_->parsed()) return runSubdivide(in_, out_, times_);
+  if (sphere_->parsed()) return runSphere(sphereOut_, sphereTimes_);
   if (kdtree_->parsed()) return runKdTree(kdMesh_, builders_, repeat_, rays_);
   return std::nullopt;
 }

@@ -34,4 +34,10 @@ KdTree buildKdTreeSequential(const Mesh& mesh);
 // makes with CUB. Nodes are stored level by level; the tree is sameTree as the sequential one.
 KdTree buildKdTreeParallel(const Mesh& mesh);
 
+// The same level-by-level builder on the GPU (kdtree_cuda.cu): each step one CUB call or one
+// element-wise kernel over device arrays, the rules the same GVDP_HD functions, nodes and leaf
+// triangles stored as buildKdTreeParallel stores them. Uploads the mesh, downloads the tree; on
+// its own stream, finished on return. Throws InputError in builds without CUDA.
+KdTree buildKdTreeCuda(const Mesh& mesh);
+
 }  // namespace gvdp::detail
