@@ -24,19 +24,7 @@ inline Mesh cubeMesh(float lo = -1.0f, float size = 2.0f) {
   return m;
 }
 
-// An icosahedron subdivided `times` times, its vertices pushed to the unit sphere.
-inline Mesh icosphere(int times) {
-  const float t = 1.6180339887f;
-  Mesh m;
-  m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-  m.indices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
-               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
-  m = subdivide(m, times);
-  for (Vec3f& v : m.vertices) v = normalize(v);
-  return m;
-}
+using detail::icosphere;  // mesh/mesh_subdivide.h
 
 // `n` random triangles in [0, 1]^3 of sizes up to `size`; a few of them flat on a grid plane.
 inline Mesh randomSoup(int n, float size, uint32_t seed) {

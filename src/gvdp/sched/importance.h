@@ -136,25 +136,22 @@ struct CountingAccess {
     uint64_t brickBits = static_cast<uint64_t>(level) << (3 * B) | coord(rel.x) << (2 * B) |
                          coord(rel.y) << B | coord(rel.z);
     uint64_t slot = 0;
+    // (node, brick) for the ray's node at `depth`; true when this call inserted it.
+    auto insertNode = [&](int depth) {
+      int shift = setup.levels - depth;
+      uint64_t node =
+          static_cast<uint64_t>(blockY >> shift) << depth | static_cast<uint64_t>(blockX >> shift);
+      return insertImportanceKey(setup, static_cast<uint64_t>(depth) << IMPORTANCE_DEPTH_SHIFT |
+                                            node << IMPORTANCE_NODE_SHIFT | brickBits);
+    };
     if (insertImportanceKey(setup, IMPORTANCE_BRICK_DEPTH << IMPORTANCE_DEPTH_SHIFT | brickBits,
                             &slot)) {
       setup.bricks[atomicAdd32(setup.status + IMPORTANCE_BRICKS, 1)] = slot;
-      for (int depth = 0; depth <= setup.levels; ++depth) {
-        int shift = setup.levels - depth;
-        uint64_t node = static_cast<uint64_t>(blockY >> shift) << depth |
-                        static_cast<uint64_t>(blockX >> shift);
-        insertImportanceKey(setup, static_cast<uint64_t>(depth) << IMPORTANCE_DEPTH_SHIFT |
-                                       node << IMPORTANCE_NODE_SHIFT | brickBits);
-      }
+      for (int depth = 0; depth <= setup.levels; ++depth) insertNode(depth);
     } else {
-      // Another ray has it: its nodes for this ray's block may still be new.
-      for (int depth = setup.levels; depth >= 0; --depth) {
-        int shift = setup.levels - depth;
-        uint64_t node = static_cast<uint64_t>(blockY >> shift) << depth |
-                        static_cast<uint64_t>(blockX >> shift);
-        if (!insertImportanceKey(setup, static_cast<uint64_t>(depth) << IMPORTANCE_DEPTH_SHIFT |
-                                            node << IMPORTANCE_NODE_SHIFT | brickBits))
-          break;  // a node has it, so every coarser node has it too
+      // Another ray has it: its nodes for this ray's block may still be new. Finest first: a
+      // node that has it means every coarser node has it too.
+      for (int depth = setup.levels; depth >= 0 && insertNode(depth); --depth) {
       }
     }
     return {BrickState::Resident, 0u, level, brick};
