@@ -21,12 +21,15 @@ TEST(Paths, EveryMovementStartsAtTheStartAndFollowsItsPinnedPath) {
       {{17.204239174723625, 5, 14.039628118276596}, 0.4f, -0.1f},
       {{2.7957608252763748, 5, -20.039628118276596}, 0.4f, -0.1f},
       {{-7.0396281182765961, 5, 4.2042391747236252}, 0.4f, -0.1f},
-      {{10, 5, -3}, 1.69499993f, -0.1f}};
+      {{10, 5, -3}, 1.69499993f, -0.1f},
+      {{-4.9377722703021805, 5, -9.1988262841861985}, 6.77582455f, -0.1f}};
   for (int m = 0; m < MOVEMENT_COUNT; ++m) {
     Movement mv = static_cast<Movement>(m);
     CameraPose p0 = cameraAt(mv, START, 0.5f, 0);
     EXPECT_NEAR(dist(p0.position, START.position), 0.0, 1e-12) << movementName(mv);
-    EXPECT_FLOAT_EQ(p0.yaw, START.yaw);
+    if (mv != Movement::Orbit) {  // orbit looks at its axis
+      EXPECT_FLOAT_EQ(p0.yaw, START.yaw);
+    }
     // Frame 37 of every path as pinned here (BENCHMARKS.md compares commits on these paths).
     CameraPose a = cameraAt(mv, START, 0.5f, 37);
     std::printf("[ measure ] %s frame 37: {%.17g, %.17g, %.17g, %.9gf, %.9gf}\n",
@@ -39,6 +42,23 @@ TEST(Paths, EveryMovementStartsAtTheStartAndFollowsItsPinnedPath) {
     EXPECT_EQ(a.pitch, PINNED[m].pitch) << movementName(mv);
     EXPECT_EQ(parseMovement(movementName(mv)), mv);
   }
+}
+
+TEST(Paths, OrbitCirclesTheVerticalAxisLookingAtIt) {
+  for (int f : {0, 10, 200}) {
+    CameraPose o = cameraAt(Movement::Orbit, START, 0.5f, f);
+    EXPECT_NEAR(std::hypot(o.position.x, o.position.z),
+                std::hypot(START.position.x, START.position.z), 1e-9);
+    EXPECT_EQ(o.position.y, START.position.y);
+    // Forward points at the axis: along -(x, z).
+    double r = std::hypot(o.position.x, o.position.z);
+    EXPECT_NEAR(std::sin(o.yaw), -o.position.x / r, 1e-6);
+    EXPECT_NEAR(std::cos(o.yaw), -o.position.z / r, 1e-6);
+  }
+  // `speed` is the arc per frame.
+  CameraPose a = cameraAt(Movement::Orbit, START, 0.5f, 1),
+             b = cameraAt(Movement::Orbit, START, 0.5f, 0);
+  EXPECT_NEAR(dist(a.position, b.position), 0.5, 1e-3);
 }
 
 TEST(Paths, MovementsMoveAsNamed) {

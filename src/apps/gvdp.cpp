@@ -26,7 +26,9 @@
 #include "gvdp/io/stats.h"
 #include "gvdp/io/timeline_export.h"
 #include "gvdp/io/video.h"
+#include "gvdp/mesh/mesh_io.h"
 #include "gvdp/sched/memory_estimate.h"
+#include "gvdp/sched/mesh_scene.h"
 #include "gvdp/serve/server.h"
 #include "mesh_commands.h"
 
@@ -49,6 +51,9 @@ constexpr int64_t MAX_POOL_MB = 190000;
 struct RenderFlags {
   std::string scene = "perlin", movement = "walkthrough", backend = "auto", scheduler = "sp";
   std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto", tilePlan = "off";
+  std::string mesh;
+  float lattice = 0.0f;
+  bool reference = false;
   std::optional<int> frames, width, height;
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
@@ -62,6 +67,11 @@ struct RenderFlags {
 // frames 0..--frame.
 void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false) {
   cmd->add_option("--scene", f.scene, "scene: " + sceneNames());
+  cmd->add_option("--mesh", f.mesh,
+                  "a triangle mesh (OFF, PLY, OBJ) as the world instead of --scene: placed at "
+                  "the origin, 1 unit long (scripts/get_meshes.sh gets some)");
+  cmd->add_option("--lattice", f.lattice,
+                  "with --mesh: copies of it every this many units in x and z (default 0: one)");
   cmd->add_option("--movement", f.movement, "camera path: " + movementNames());
   CLI::Option* frames = cmd->add_option("--frames", f.frames,
                                         "frames to render (default: 24 on the GPU, 6 on the CPU)");
@@ -104,6 +114,9 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
       ->check(CLI::IsMember({"on", "off"}));
   if (timelineCommand) return;
   cmd->add_option("--out", f.out, "output directory for frame_NNNN.png and stats.json");
+  cmd->add_flag("--reference", f.reference,
+                "with --mesh: also the ray cast of the triangles (reference_NNNN.png) and each "
+                "frame's PSNR against it");
   cmd->add_option("--timeline", f.timeline,
                   "also record every frame's GPU-cores timeline: DIR/timeline_NNNN.png and .json");
   cmd->add_option("--video", f.video,
@@ -183,7 +196,14 @@ uint32_t pendingLaunchesFrom(const std::optional<int64_t>& n) {
 SequenceOptions toOptions(const RenderFlags& f) {
   SequenceOptions o;
   o.scene = f.scene;
+  o.mesh = f.mesh;
+  o.lattice = f.lattice;
+  GVDP_INPUT_CHECK(f.lattice == 0.0f || !f.mesh.empty(), "--lattice ", f.lattice,
+                   " needs --mesh (it repeats a mesh)");
+  GVDP_INPUT_CHECK(!f.reference || !f.mesh.empty(),
+                   "--reference needs --mesh (the ray cast of its triangles)");
   o.movement = parseMovement(f.movement);
+  if (!o.mesh.empty()) readMesh(o.mesh);  // a missing or malformed file before any output
   o.scheduler.backend = resolveBackend(f.backend);
   bool gpu = o.scheduler.backend == Backend::Cuda;
   o.scheduler.kind = parseScheduler(f.scheduler);
@@ -216,8 +236,8 @@ void writeTimeline(const FrameStats& s, const std::string& dir, int index,
   std::snprintf(base, sizeof base, "/timeline_%04d", index);
   const TimelineCapture& t = s.timeline;
   std::string title = std::string(schedulerName(o.scheduler.kind)) + " on " +
-                      std::string(backendName(o.scheduler.backend)) + ", " + o.scene + " frame " +
-                      std::to_string(index) + ", " + std::to_string(o.width) + "x" +
+                      std::string(backendName(o.scheduler.backend)) + ", " + worldName(o) +
+                      " frame " + std::to_string(index) + ", " + std::to_string(o.width) + "x" +
                       std::to_string(o.height);
   writePng(timelineImage(t.records, t.lanes, title), dir + base + ".png");
   std::ofstream json(dir + base + ".json");
@@ -267,17 +287,27 @@ int runRender(const RenderFlags& flags) {
   if (!flags.video.empty()) video.emplace(flags.video, o.width, o.height, flags.videoFps);
   outputs.keep();
   const std::string& dir = flags.out;
-  std::fprintf(stderr, "gvdp: %s, %s, %dx%d, %d frames, scheduler %s on %s\n", o.scene.c_str(),
+  std::fprintf(stderr, "gvdp: %s, %s, %dx%d, %d frames, scheduler %s on %s\n", worldName(o).c_str(),
                std::string(movementName(o.movement)).c_str(), o.width, o.height, o.frames,
                std::string(schedulerName(o.scheduler.kind)).c_str(),
                o.scheduler.backend == Backend::Cuda ? cudaDeviceSummary().c_str() : "cpu");
   std::vector<FrameStats> frames;
+  // The reference: the same mesh, its tree built on the CPU, ray cast on the CPU.
+  std::shared_ptr<const MeshScene> reference;
+  if (flags.reference) reference = MeshScene::load(o.mesh, o.lattice, Backend::Cpu);
   MemoryReport memory = renderSequence(
       o,
       [&](const Image& image, const FrameStats& s) {
         char name[32];
         std::snprintf(name, sizeof name, "/frame_%04d.png", s.index);
         writePng(image, dir + name);
+        if (reference) {
+          Image ray;
+          reference->renderReference(frameOf(o, s.index), ray);
+          std::snprintf(name, sizeof name, "/reference_%04d.png", s.index);
+          writePng(ray, dir + name);
+          std::printf("frame %4d  PSNR against the ray cast %.2f dB\n", s.index, psnr(image, ray));
+        }
         if (video) video->add(image);
         if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
         frames.push_back(s);
@@ -342,7 +372,7 @@ int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
   renderSequence(o, [&](const Image&, const FrameStats& s) { last = s; });
   const TimelineCapture& t = last.timeline;
   std::string title = std::string(schedulerName(o.scheduler.kind)) + " on " +
-                      std::string(backendName(o.scheduler.backend)) + ", " + o.scene + " " +
+                      std::string(backendName(o.scheduler.backend)) + ", " + worldName(o) + " " +
                       std::string(movementName(o.movement)) + " frame " + std::to_string(frame) +
                       ", " + std::to_string(o.width) + "x" + std::to_string(o.height) + ", " +
                       std::to_string(last.ms) + " ms";
@@ -373,6 +403,8 @@ struct BenchFlags {
   std::string scenes = "perlin,fbm,forest,random-spheres,aligned-spheres";
   std::string movements = "walkthrough,forward,backward,sideways,spinning";
   std::string schedulers = "sp,dp,pt", backend = "auto", out = "results.json", csv, markdown;
+  std::string mesh;
+  float lattice = 0.0f;
   std::optional<int> frames, warmup, width, height;
   std::optional<int64_t> poolBricks, lookahead;
   std::optional<double> budgetMs;
@@ -408,9 +440,11 @@ std::vector<SchedulerKind> benchSchedulers(const std::string& list, bool gpu) {
   return kinds;
 }
 
+// "mesh" names the --mesh file's world.
 std::vector<std::string> benchScenes(const std::string& list) {
   std::vector<std::string> scenes;
-  for (const std::string& s : splitList(list)) scenes.push_back(std::string(findScene(s).name));
+  for (const std::string& s : splitList(list))
+    scenes.push_back(s == BENCH_MESH ? s : std::string(findScene(s).name));
   refuseDuplicates(scenes, "--scenes");
   return scenes;
 }
@@ -431,7 +465,11 @@ BenchOptions benchOptions(const BenchFlags& f) {
   BenchOptions o;
   o.backend = resolveBackend(f.backend);
   bool gpu = o.backend == Backend::Cuda;
-  o.scenes = benchScenes(f.scenes);
+  // --mesh alone: the mesh's cells only.
+  o.scenes =
+      benchScenes(!f.mesh.empty() && f.scenes == BenchFlags{}.scenes ? BENCH_MESH : f.scenes);
+  o.mesh = f.mesh;
+  o.lattice = f.lattice;
   o.movements = benchMovements(f.movements);
   o.schedulers = benchSchedulers(f.schedulers, gpu);
   GVDP_INPUT_CHECK(!f.scale || !f.width, "--width ", f.width.value_or(0),
@@ -621,7 +659,10 @@ int run(int argc, char** argv) {
   BenchFlags bench;
   CLI::App* benchCmd =
       app.add_subcommand("bench", "the paper's Table 1: scenes x movements x schedulers");
-  benchCmd->add_option("--scenes", bench.scenes, "comma-separated (default: all five)");
+  benchCmd->add_option("--scenes", bench.scenes,
+                       "comma-separated (default: all five; 'mesh': the --mesh file)");
+  benchCmd->add_option("--mesh", bench.mesh, "a mesh file, the world of the scene 'mesh'");
+  benchCmd->add_option("--lattice", bench.lattice, "the mesh's copies (see render --lattice)");
   benchCmd->add_option("--movements", bench.movements, "comma-separated (default: all five)");
   benchCmd->add_option("--schedulers", bench.schedulers,
                        "comma-separated (default: sp,dp,pt; graph: cuda only)");

@@ -1,5 +1,6 @@
 #include "gvdp/bench/bench.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -19,7 +20,12 @@ constexpr int SCALE_SIZES[4][2] = {{1280, 720}, {1500, 1000}, {1920, 1080}, {384
 SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Movement m,
                              SchedulerKind k) {
   SequenceOptions s;
-  s.scene = scene;
+  if (scene == BENCH_MESH) {
+    s.mesh = o.mesh;
+    s.lattice = o.lattice;
+  } else {
+    s.scene = scene;
+  }
   s.movement = m;
   s.width = o.width;
   s.height = o.height;
@@ -40,10 +46,10 @@ BenchOptions scaleOptions(const BenchOptions& o, const int size[2]) {
 
 BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, SchedulerKind k) {
   SequenceOptions s = cellSequence(o, scene, m, k);  // checked by validate(BenchOptions)
-  std::unique_ptr<Renderer> renderer = makeRenderer(scene, s);
+  std::unique_ptr<Renderer> renderer = makeSequenceRenderer(s);
   Image image;
   BenchCell c{};
-  c.scene = scene;
+  c.scene = worldName(s);
   c.movement = std::string(movementName(m));
   c.scheduler = std::string(schedulerName(k));
   uint64_t bricks = 0, unsampled = 0, samples = 0, lookups = 0, skips = 0;
@@ -94,7 +100,12 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
 void validate(const BenchOptions& o) {
   GVDP_INPUT_CHECK(!o.scenes.empty() && !o.movements.empty() && !o.schedulers.empty(),
                    "empty --scenes, --movements or --schedulers");
-  for (const std::string& scene : o.scenes) findScene(scene);
+  for (const std::string& scene : o.scenes) {
+    GVDP_INPUT_CHECK(scene != BENCH_MESH || !o.mesh.empty(), "scene 'mesh' needs --mesh FILE");
+    if (scene != BENCH_MESH) findScene(scene);
+  }
+  GVDP_INPUT_CHECK(o.mesh.empty() || std::count(o.scenes.begin(), o.scenes.end(), BENCH_MESH),
+                   "--mesh ", o.mesh, " is not used: add 'mesh' to --scenes");
   // Sizes and memory depend on the scheduler and the frame size, not on the scene or the path.
   auto check = [](const SequenceOptions& s) {
     validate(s);

@@ -11,8 +11,12 @@
 
 namespace gvdp::detail {
 
+constexpr const char* BENCH_MESH = "mesh";  // the scene name of `mesh`'s world
+
 struct BenchOptions {
-  std::vector<std::string> scenes;
+  std::vector<std::string> scenes;  // built-in scenes, and BENCH_MESH for the mesh below
+  std::string mesh;                 // a mesh file
+  float lattice = 0;
   std::vector<Movement> movements;
   std::vector<SchedulerKind> schedulers;
   Backend backend = Backend::Cpu;

@@ -1,5 +1,6 @@
 #include "gvdp/bench/paths.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -7,8 +8,8 @@
 
 namespace gvdp::detail {
 namespace {
-constexpr std::array<std::string_view, MOVEMENT_COUNT> NAMES = {"walkthrough", "forward",
-                                                                "backward", "sideways", "spinning"};
+constexpr std::array<std::string_view, MOVEMENT_COUNT> NAMES = {
+    "walkthrough", "forward", "backward", "sideways", "spinning", "orbit"};
 Vec3d horizontal(float yaw) {
   return {std::sin(yaw), 0.0, std::cos(yaw)};
 }
@@ -49,6 +50,14 @@ CameraPose cameraAt(Movement m, const CameraPose& start, float speed, int frame)
     case Movement::Spinning:
       pose.yaw = start.yaw + static_cast<float>(f * 0.035);
       break;
+    case Movement::Orbit: {
+      // `speed` along the circle; the yaw looks at the axis (yaw 0 looks along +z).
+      double radius = std::max(std::hypot(start.position.x, start.position.z), 1e-3);
+      double angle = std::atan2(start.position.x, start.position.z) + s * f / radius;
+      pose.position = {radius * std::sin(angle), start.position.y, radius * std::cos(angle)};
+      pose.yaw = static_cast<float>(angle + PI);
+      break;
+    }
     case Movement::Walkthrough: {
       // The heading drifts smoothly (yaw0 + A sin(W f)) and the position sums the unit steps
       // along it; the eye rises and falls a little.

@@ -1,5 +1,7 @@
 // The five camera movements of the paper's benchmark (4.1), deterministic in the frame index:
-// walkthrough (forward with gentle turns and bobbing), forward, backward, sideways, spinning.
+// walkthrough (forward with gentle turns and bobbing), forward, backward, sideways, spinning;
+// and orbit, for finite objects (meshes): around the vertical axis through the world's origin,
+// looking at it, at the start's height and distance.
 #pragma once
 
 #include <string>
@@ -9,8 +11,8 @@
 
 namespace gvdp::detail {
 
-enum class Movement { Walkthrough, Forward, Backward, Sideways, Spinning };
-constexpr int MOVEMENT_COUNT = 5;
+enum class Movement { Walkthrough, Forward, Backward, Sideways, Spinning, Orbit };
+constexpr int MOVEMENT_COUNT = 6;
 
 std::string_view movementName(Movement m);
 Movement parseMovement(std::string_view name);  // throws InputError

@@ -4,11 +4,15 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/sched/memory_estimate.h"
+#include "gvdp/sched/mesh_scene.h"
 
 namespace gvdp::detail {
 
 void validate(const SequenceOptions& o) {
-  findScene(o.scene);
+  if (o.mesh.empty())
+    findScene(o.scene);
+  else
+    validateLattice(o.lattice);
   validate(static_cast<const RendererOptions&>(o));
   GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 1000000, "bad --frames ", o.frames,
                    " (expected 1..1000000)");
@@ -57,15 +61,28 @@ void checkResources(const SequenceOptions& o, const std::string& what) {
                    cuda ? " of device memory free" : " of memory available");
 }
 
+std::string worldName(const SequenceOptions& o) {
+  if (o.mesh.empty()) return o.scene;
+  size_t slash = o.mesh.find_last_of('/');
+  return "mesh:" + o.mesh.substr(slash == std::string::npos ? 0 : slash + 1);
+}
+
+std::unique_ptr<Renderer> makeSequenceRenderer(const SequenceOptions& o) {
+  if (o.mesh.empty()) return makeRenderer(o.scene, o);
+  return std::make_unique<Renderer>(
+      o, MeshScene::load(o.mesh, o.lattice, o.scheduler.backend)->kernels());
+}
+
 CameraPose poseOf(const SequenceOptions& o, int frame) {
-  const SceneInfo& scene = findScene(o.scene);
-  CameraPose start = scene.start;
+  bool mesh = !o.mesh.empty();
+  CameraPose start = mesh ? meshStart(o.lattice) : findScene(o.scene).start;
   start.position = start.position + o.origin;
-  return cameraAt(o.movement, start, scene.speed, frame);
+  return cameraAt(o.movement, start, mesh ? MESH_SPEED : findScene(o.scene).speed, frame);
 }
 
 FrameSetup frameOf(const SequenceOptions& o, int frame) {
-  return frameOf(o, findScene(o.scene).world.voxelSize0(), poseOf(o, frame), frame);
+  float voxelSize0 = o.mesh.empty() ? findScene(o.scene).world.voxelSize0() : MESH_VOXEL_SIZE0;
+  return frameOf(o, voxelSize0, poseOf(o, frame), frame);
 }
 
 MemoryReport renderSequence(const SequenceOptions& o,
@@ -73,7 +90,7 @@ MemoryReport renderSequence(const SequenceOptions& o,
                             const TileProgress& onTile) {
   validate(o);
   checkResources(o);
-  std::unique_ptr<Renderer> renderer = makeRenderer(o.scene, o);
+  std::unique_ptr<Renderer> renderer = makeSequenceRenderer(o);
   renderer->onTile(onTile);
   Image image;
   for (int f = 0; f < o.frames; ++f) {

@@ -1,6 +1,6 @@
-// A frame sequence: a built-in scene, a camera movement and a renderer's options, rendered frame
-// by frame through the public Renderer (include/gvdp/renderer.h). The `render` command, the
-// tests and the benchmark all go through here.
+// A frame sequence: a built-in scene or a mesh, a camera movement and a renderer's options,
+// rendered frame by frame through the public Renderer (include/gvdp/renderer.h). The `render`
+// command, the tests and the benchmark all go through here.
 #pragma once
 
 #include <functional>
@@ -15,6 +15,8 @@ namespace gvdp::detail {
 // A renderer's options (scheduler, size, levels, field of view) and the sequence's own.
 struct SequenceOptions : RendererOptions {
   std::string scene = "perlin";
+  std::string mesh;   // a mesh file (OFF, PLY, OBJ): the world instead of `scene`
+  float lattice = 0;  // the mesh's copies in x and z this far apart (0: one model)
   Movement movement = Movement::Walkthrough;
   int frames = 8;
   Vec3d origin{0, 0, 0};  // added to the scene's start position
@@ -27,6 +29,11 @@ void validate(const SequenceOptions& options);
 // the sequence (memory_estimate.h) do not fit in what the backend can hold now. `what` names the
 // configuration in the message, e.g. "--pool-mb 190000" (default: scheduler, size and pool).
 void checkResources(const SequenceOptions& options, const std::string& what = "");
+
+// The world's name: the scene's, or "mesh:" and the mesh file's name.
+std::string worldName(const SequenceOptions& options);
+// A renderer of the sequence's world (a mesh: read, placed and its kd-tree built here).
+std::unique_ptr<Renderer> makeSequenceRenderer(const SequenceOptions& options);
 
 CameraPose poseOf(const SequenceOptions& options, int frame);
 // The frame a renderer makes of poseOf(options, frame) as its frame number `frame`.

@@ -12,7 +12,11 @@ namespace gvdp::detail {
 std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& frames,
                       const MemoryReport& memory) {
   nlohmann::json j;
-  j["scene"] = o.scene;
+  j["scene"] = worldName(o);
+  if (!o.mesh.empty()) {
+    j["mesh"] = o.mesh;
+    j["lattice"] = o.lattice;
+  }
   j["movement"] = movementName(o.movement);
   j["backend"] = backendName(o.scheduler.backend);
   j["scheduler"] = schedulerName(o.scheduler.kind);

@@ -1,0 +1,215 @@
+// Distance queries through a kd-tree (kdtree.h), GVDP_HD over PODs: the triangle nearest to a
+// point with the feature (face, edge, vertex) its nearest point lies on, the signed distance
+// that feature's pseudonormal gives (mesh_normals.h), and whether any triangle's box meets a box.
+// Nearest: front-to-back over the tree with a stack of far children and their squared distance
+// lower bounds; a node is skipped when its bound is not below the best so far. Ties between
+// equally near triangles keep the first found: a query's answer depends on the point alone.
+#pragma once
+
+#include <cstdint>
+
+#include "gvdp/mesh/kdtree.h"
+#include "gvdp/mesh/kdtree_raycast.h"
+
+namespace gvdp::detail {
+
+// A mesh's surface in memory it does not own: vertices, triangles, the tree and the normals.
+struct SurfaceView {
+  MeshView mesh;
+  KdTreeView tree;
+  const Vec3f* vertexNormals;  // one per vertex
+  const Vec3f* edgeNormals;    // three per triangle
+};
+
+// Where on a triangle its nearest point lies.
+enum class TriangleFeature : uint8_t { Face, Vertex0, Vertex1, Vertex2, Edge0, Edge1, Edge2 };
+
+struct NearestPoint {
+  Vec3f point;
+  float b1, b2;  // barycentric weights of corners 1 and 2 (corner 0: 1 - b1 - b2)
+  TriangleFeature feature;
+};
+
+// Ericson, "Real-Time Collision Detection" 5.1.5, with the Voronoi region it ends in. Edge k runs
+// from corner k to corner k + 1.
+GVDP_HD GVDP_INLINE NearestPoint nearestOnTriangle(Vec3f p, Vec3f a, Vec3f b, Vec3f c) {
+  Vec3f ab = b - a, ac = c - a, ap = p - a;
+  float d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0f && d2 <= 0.0f) return {a, 0.0f, 0.0f, TriangleFeature::Vertex0};
+  Vec3f bp = p - b;
+  float d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0f && d4 <= d3) return {b, 1.0f, 0.0f, TriangleFeature::Vertex1};
+  float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+    float v = d1 / (d1 - d3);
+    return {a + ab * v, v, 0.0f, TriangleFeature::Edge0};
+  }
+  Vec3f cp = p - c;
+  float d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0f && d5 <= d6) return {c, 0.0f, 1.0f, TriangleFeature::Vertex2};
+  float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+    float w = d2 / (d2 - d6);
+    return {a + ac * w, 0.0f, w, TriangleFeature::Edge2};
+  }
+  float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+    float w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {b + (c - b) * w, 1.0f - w, w, TriangleFeature::Edge1};
+  }
+  float sum = va + vb + vc;
+  if (!(sum > 0.0f)) return {a, 0.0f, 0.0f, TriangleFeature::Vertex0};  // degenerate
+  float v = vb / sum, w = vc / sum;
+  return {a + ab * v + ac * w, v, w, TriangleFeature::Face};
+}
+
+struct NearestTriangle {
+  float distanceSq;   // infinity when none within the query's reach
+  uint32_t triangle;  // KD_NO_HIT: none
+  NearestPoint at;
+};
+
+// The squared distance from p to a box (0 inside).
+GVDP_HD GVDP_INLINE float boxDistanceSq(Vec3f p, Box3f b) {
+  float dx = fmaxf(fmaxf(b.lo.x - p.x, p.x - b.hi.x), 0.0f);
+  float dy = fmaxf(fmaxf(b.lo.y - p.y, p.y - b.hi.y), 0.0f);
+  float dz = fmaxf(fmaxf(b.lo.z - p.z, p.z - b.hi.z), 0.0f);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+// The triangle nearest to p among those closer than sqrt(reachSq).
+GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& s, float reachSq) {
+  NearestTriangle best{reachSq, KD_NO_HIT, {}};
+  float bound = boxDistanceSq(p, s.tree.bounds);
+  if (!(bound < best.distanceSq)) return best;
+  struct Pending {
+    uint32_t node;
+    float boundSq;
+  } stack[KD_STACK_SIZE];
+  int top = 0;
+  uint32_t node = 0;
+  for (;;) {
+    KdNode n = s.tree.nodes[node];
+    while (!isLeaf(n)) {
+      int axis = splitAxis(n);
+      float gap = component(p, axis) - splitPosition(n);
+      bool belowFirst = gap < 0.0f;
+      float farSq = fmaxf(bound, gap * gap);
+      if (farSq < best.distanceSq)
+        stack[top++] = {belowFirst ? rightChild(n) : leftChild(n), farSq};
+      node = belowFirst ? leftChild(n) : rightChild(n);
+      n = s.tree.nodes[node];
+    }
+    for (uint32_t k = 0; k < leafCount(n); ++k) {
+      uint32_t tri = s.tree.leafTriangles[leafFirst(n) + k];
+      const uint32_t* i = s.mesh.indices + 3 * tri;
+      NearestPoint q =
+          nearestOnTriangle(p, s.mesh.vertices[i[0]], s.mesh.vertices[i[1]], s.mesh.vertices[i[2]]);
+      Vec3f d = p - q.point;
+      float dSq = dot(d, d);
+      if (dSq < best.distanceSq) best = {dSq, tri, q};
+    }
+    do {
+      if (top == 0) return best;
+      --top;
+    } while (!(stack[top].boundSq < best.distanceSq));
+    node = stack[top].node;
+    bound = stack[top].boundSq;
+  }
+}
+
+// The pseudonormal of the feature a nearest point lies on.
+GVDP_HD GVDP_INLINE Vec3f featureNormal(const SurfaceView& s, const NearestTriangle& t) {
+  const uint32_t* i = s.mesh.indices + 3 * t.triangle;
+  switch (t.at.feature) {
+    case TriangleFeature::Vertex0:
+      return s.vertexNormals[i[0]];
+    case TriangleFeature::Vertex1:
+      return s.vertexNormals[i[1]];
+    case TriangleFeature::Vertex2:
+      return s.vertexNormals[i[2]];
+    case TriangleFeature::Edge0:
+      return s.edgeNormals[3 * t.triangle];
+    case TriangleFeature::Edge1:
+      return s.edgeNormals[3 * t.triangle + 1];
+    case TriangleFeature::Edge2:
+      return s.edgeNormals[3 * t.triangle + 2];
+    default: {
+      Vec3f a = s.mesh.vertices[i[0]];
+      return cross(s.mesh.vertices[i[1]] - a, s.mesh.vertices[i[2]] - a);
+    }
+  }
+}
+
+// The shading normal at a point of a triangle: the vertex normals interpolated.
+GVDP_HD GVDP_INLINE Vec3f shadingNormal(const SurfaceView& s, uint32_t triangle, float b1,
+                                        float b2) {
+  const uint32_t* i = s.mesh.indices + 3 * triangle;
+  Vec3f n = s.vertexNormals[i[0]] * (1.0f - b1 - b2) + s.vertexNormals[i[1]] * b1 +
+            s.vertexNormals[i[2]] * b2;
+  float l = length(n);
+  return l > 0.0f ? n / l : Vec3f{0.0f, 1.0f, 0.0f};
+}
+
+// Whether p is inside the surface, by the pseudonormal of its nearest feature (exact for a
+// closed, consistently oriented mesh, whatever the distance).
+GVDP_HD GVDP_INLINE bool insideOf(Vec3f p, const SurfaceView& s, const NearestTriangle& t) {
+  return t.triangle != KD_NO_HIT && dot(p - t.at.point, featureNormal(s, t)) < 0.0f;
+}
+
+// Whether p is inside the surface, by a ray cast from it (for points far from the surface, where
+// a nearest-triangle query would visit much of the tree): the first triangle a ray meets is
+// crossed from the inside when the ray leaves through its front (a closed, consistently oriented
+// mesh); no triangle: outside. A grazing first hit (|cos| < 0.1 with the face) tells little, so
+// the next of three fixed directions (not axis-aligned: no ray in a split plane) is tried.
+GVDP_HD GVDP_INLINE bool insideByRay(Vec3f p, const SurfaceView& s) {
+  const Vec3f DIRECTIONS[3] = {{0.5773503f, 0.6172134f, 0.5345225f},
+                               {-0.7071068f, 0.4082483f, -0.5773503f},
+                               {0.3015113f, -0.9045340f, 0.3015113f}};
+  bool inside = false;
+  for (const Vec3f& d : DIRECTIONS) {
+    MeshHit hit = closestHit({p, d}, s.tree, s.mesh);
+    if (hit.triangle == KD_NO_HIT) return false;
+    const uint32_t* i = s.mesh.indices + 3 * hit.triangle;
+    Vec3f a = s.mesh.vertices[i[0]];
+    Vec3f n = cross(s.mesh.vertices[i[1]] - a, s.mesh.vertices[i[2]] - a);
+    float cosine = dot(n, d), norm = length(n);
+    inside = cosine > 0.0f;
+    if (fabsf(cosine) > 0.1f * norm) break;
+  }
+  return inside;
+}
+
+// Whether the box of some triangle meets `query` (closed boxes).
+GVDP_HD GVDP_INLINE bool anyTriangleBoxMeets(Box3f query, const SurfaceView& s) {
+  auto meets = [](Box3f a, Box3f b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+           a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+  };
+  if (!meets(query, s.tree.bounds)) return false;
+  uint32_t stack[KD_STACK_SIZE];
+  int top = 0;
+  uint32_t node = 0;
+  for (;;) {
+    KdNode n = s.tree.nodes[node];
+    while (!isLeaf(n)) {
+      int axis = splitAxis(n);
+      float split = splitPosition(n);
+      bool left = component(query.lo, axis) <= split, right = component(query.hi, axis) >= split;
+      if (left && right) stack[top++] = rightChild(n);
+      node = left ? leftChild(n) : rightChild(n);
+      n = s.tree.nodes[node];
+    }
+    for (uint32_t k = 0; k < leafCount(n); ++k) {
+      const uint32_t* i = s.mesh.indices + 3 * s.tree.leafTriangles[leafFirst(n) + k];
+      Box3f b =
+          merge(merge(Box3f{s.mesh.vertices[i[0]], s.mesh.vertices[i[0]]}, s.mesh.vertices[i[1]]),
+                s.mesh.vertices[i[2]]);
+      if (meets(query, b)) return true;
+    }
+    if (top == 0) return false;
+    node = stack[--top];
+  }
+}
+
+}  // namespace gvdp::detail
