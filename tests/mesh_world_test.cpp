@@ -7,6 +7,7 @@
 #include <random>
 
 #include "gvdp/mesh/kdtree_nearest.h"
+#include "gvdp/mesh/kdtree_surfels.h"
 #include "gvdp/mesh/mesh_io.h"
 #include "gvdp/mesh/mesh_normals.h"
 #include "gvdp/sched/mesh_scene.h"
@@ -47,7 +48,11 @@ TEST(MeshNearest, DistanceAndSideEqualBruteForceAndTheSpheres) {
   SurfaceView s{{m.vertices.data(), m.indices.data(), static_cast<uint32_t>(m.triangleCount())},
                 tree.view(),
                 n.vertex.data(),
-                n.edge.data()};
+                n.edge.data(),
+                nullptr};
+  std::vector<KdSurfel> surfels = kdSurfels(m, tree);
+  SurfaceView withSurfels = s;
+  withSurfels.surfels = surfels.data();
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.6f, 2.4f);
   int inside = 0;
@@ -57,6 +62,10 @@ TEST(MeshNearest, DistanceAndSideEqualBruteForceAndTheSpheres) {
     NearestTriangle t = nearestTriangle(p, s, 3e38f);
     ASSERT_NE(t.triangle, KD_NO_HIT);
     EXPECT_EQ(t.distanceSq, brute) << p.x << "," << p.y << "," << p.z;
+    // The surfels' boxes prune exactly; standing in, a surfel errs by less than its width.
+    EXPECT_EQ(nearestTriangle(p, withSurfels, 3e38f).distanceSq, brute);
+    NearestTriangle coarse = nearestTriangle(p, withSurfels, 3e38f, 0.1f);
+    EXPECT_NEAR(std::sqrt(coarse.distanceSq), std::sqrt(brute), 0.1f);
     // A bounded query finds it exactly when it lies within the reach.
     EXPECT_EQ(nearestTriangle(p, s, 0.04f).triangle != KD_NO_HIT, brute < 0.04f);
     // The spheres' own inside (polygons lie within 2% inside the unit sphere at 3 subdivisions).
@@ -107,15 +116,15 @@ TEST(MeshWorld, EmptyFlagsAndBoxBoundsAreConservative) {
 }
 
 test::Renders meshRun(const std::string& mesh, float lattice, SchedulerKind kind, int frames,
-                      Movement movement) {
+                      Movement movement, Backend backend = Backend::Cpu, int w = 96, int h = 64) {
   SequenceOptions o;
   o.mesh = mesh;
   o.lattice = lattice;
   o.frames = frames;
-  o.width = 96;
-  o.height = 64;
+  o.width = w;
+  o.height = h;
   o.movement = movement;
-  o.scheduler = resolvedOptions({Backend::Cpu, kind, 0});
+  o.scheduler = resolvedOptions({backend, kind, 0});
   test::Renders r;
   renderSequence(o, [&](const Image& im, const FrameStats& st) {
     r.images.push_back(im);
@@ -159,6 +168,43 @@ TEST(MeshCpu, SchedulersRenderTheSameFramesCloseToTheRayCast) {
       EXPECT_GT(db, c.minPsnr) << "frame " << f;
     }
     EXPECT_GT(sp.stats[0].cache.produced, 50u);  // the mesh is in view
+  }
+}
+
+// Every GPU scheduler renders sp's frames bit for bit; the GPU's frames are close to the CPU's
+// and to the ray cast.
+TEST(MeshGpu, SchedulersRenderTheSameFramesCloseToTheCpuAndTheRayCast) {
+  GVDP_REQUIRE_GPU();
+  std::string path = writeTestMesh("gpu");
+  const int FRAMES = 6, W = 320, H = 200;
+  for (float lattice : {0.0f, 1.5f}) {
+    Movement movement = lattice == 0.0f ? Movement::Orbit : Movement::Walkthrough;
+    test::Renders sp =
+        meshRun(path, lattice, SchedulerKind::Sp, FRAMES, movement, Backend::Cuda, W, H);
+    for (SchedulerKind k : {SchedulerKind::Dp, SchedulerKind::Pt, SchedulerKind::Graph}) {
+      test::Renders r = meshRun(path, lattice, k, FRAMES, movement, Backend::Cuda, W, H);
+      for (int f = 0; f < FRAMES; ++f) {
+        EXPECT_EQ(r.images[f].pixels, sp.images[f].pixels) << schedulerName(k) << " frame " << f;
+        EXPECT_EQ(r.stats[f].unfinishedPixels, 0);
+      }
+    }
+    test::Renders cpu = meshRun(path, lattice, SchedulerKind::Sp, 2, movement, Backend::Cpu, W, H);
+    auto scene = MeshScene::load(path, lattice, Backend::Cpu);
+    SequenceOptions o;
+    o.mesh = path;
+    o.lattice = lattice;
+    o.width = W;
+    o.height = H;
+    o.movement = movement;
+    for (int f = 0; f < 2; ++f) {
+      Image reference;
+      scene->renderReference(frameOf(o, f), reference);
+      double gpuCpu = psnr(sp.images[f], cpu.images[f]), gpuRay = psnr(sp.images[f], reference);
+      std::printf("lattice %.1f frame %d: GPU against CPU %.2f dB, against the ray cast %.2f dB\n",
+                  lattice, f, gpuCpu, gpuRay);
+      EXPECT_GT(gpuCpu, 40.0);
+      EXPECT_GT(gpuRay, 25.0);
+    }
   }
 }
 

@@ -10,6 +10,7 @@
 
 #include "gvdp/mesh/kdtree.h"
 #include "gvdp/mesh/kdtree_raycast.h"
+#include "gvdp/mesh/kdtree_surfels.h"
 
 namespace gvdp::detail {
 
@@ -19,6 +20,7 @@ struct SurfaceView {
   KdTreeView tree;
   const Vec3f* vertexNormals;  // one per vertex
   const Vec3f* edgeNormals;    // three per triangle
+  const KdSurfel* surfels;     // one per node (kdtree_surfels.h)
 };
 
 // Where on a triangle its nearest point lies.
@@ -64,10 +66,21 @@ GVDP_HD GVDP_INLINE NearestPoint nearestOnTriangle(Vec3f p, Vec3f a, Vec3f b, Ve
 }
 
 struct NearestTriangle {
-  float distanceSq;   // infinity when none within the query's reach
-  uint32_t triangle;  // KD_NO_HIT: none
+  float distanceSq;   // the reach asked for when none within it
+  uint32_t triangle;  // KD_NO_HIT: none, or a surfel
   NearestPoint at;
+  uint32_t surfel = KD_NO_HIT;  // the node whose surfel stood in for its triangles, if any
+
+  GVDP_HD bool found() const { return triangle != KD_NO_HIT || surfel != KD_NO_HIT; }
 };
+
+// The point of a surfel's disc (radius: half its width) nearest to p.
+GVDP_HD GVDP_INLINE Vec3f nearestOnSurfel(Vec3f p, const KdSurfel& s) {
+  Vec3f w = p - s.centre;
+  Vec3f lateral = w - s.normal * dot(w, s.normal);
+  float l = length(lateral), r = 0.5f * surfelWidth(s);
+  return s.centre + (l > r ? lateral * (r / l) : lateral);
+}
 
 // The squared distance from p to a box (0 inside).
 GVDP_HD GVDP_INLINE float boxDistanceSq(Vec3f p, Box3f b) {
@@ -77,8 +90,11 @@ GVDP_HD GVDP_INLINE float boxDistanceSq(Vec3f p, Box3f b) {
   return dx * dx + dy * dy + dz * dz;
 }
 
-// The triangle nearest to p among those closer than sqrt(reachSq).
-GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& s, float reachSq) {
+// The triangle nearest to p among those closer than sqrt(reachSq). With surfels, a node is
+// skipped when its triangles' box is not nearer than the best so far (empty nodes always), and
+// one whose box is at most `surfelAt` wide answers with its surfel (0: triangles only).
+GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& s, float reachSq,
+                                                    float surfelAt = 0.0f) {
   NearestTriangle best{reachSq, KD_NO_HIT, {}};
   float bound = boxDistanceSq(p, s.tree.bounds);
   if (!(bound < best.distanceSq)) return best;
@@ -90,7 +106,15 @@ GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& 
   uint32_t node = 0;
   for (;;) {
     KdNode n = s.tree.nodes[node];
-    while (!isLeaf(n)) {
+    float width = s.surfels ? surfelWidth(s.surfels[node]) : 3.0e38f;
+    if (s.surfels && !(boxDistanceSq(p, s.surfels[node].box) < best.distanceSq)) {
+      // nothing nearer under this node
+    } else if (s.surfels && width <= surfelAt) {
+      Vec3f q = nearestOnSurfel(p, s.surfels[node]);
+      Vec3f d = p - q;
+      float dSq = dot(d, d);
+      if (dSq < best.distanceSq) best = {dSq, KD_NO_HIT, {q, 0.0f, 0.0f, {}}, node};
+    } else if (!isLeaf(n)) {
       int axis = splitAxis(n);
       float gap = component(p, axis) - splitPosition(n);
       bool belowFirst = gap < 0.0f;
@@ -98,16 +122,17 @@ GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& 
       if (farSq < best.distanceSq)
         stack[top++] = {belowFirst ? rightChild(n) : leftChild(n), farSq};
       node = belowFirst ? leftChild(n) : rightChild(n);
-      n = s.tree.nodes[node];
-    }
-    for (uint32_t k = 0; k < leafCount(n); ++k) {
-      uint32_t tri = s.tree.leafTriangles[leafFirst(n) + k];
-      const uint32_t* i = s.mesh.indices + 3 * tri;
-      NearestPoint q =
-          nearestOnTriangle(p, s.mesh.vertices[i[0]], s.mesh.vertices[i[1]], s.mesh.vertices[i[2]]);
-      Vec3f d = p - q.point;
-      float dSq = dot(d, d);
-      if (dSq < best.distanceSq) best = {dSq, tri, q};
+      continue;
+    } else {
+      for (uint32_t k = 0; k < leafCount(n); ++k) {
+        uint32_t tri = s.tree.leafTriangles[leafFirst(n) + k];
+        const uint32_t* i = s.mesh.indices + 3 * tri;
+        NearestPoint q = nearestOnTriangle(p, s.mesh.vertices[i[0]], s.mesh.vertices[i[1]],
+                                           s.mesh.vertices[i[2]]);
+        Vec3f d = p - q.point;
+        float dSq = dot(d, d);
+        if (dSq < best.distanceSq) best = {dSq, tri, q};
+      }
     }
     do {
       if (top == 0) return best;
@@ -118,8 +143,13 @@ GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& 
   }
 }
 
-// The pseudonormal of the feature a nearest point lies on.
-GVDP_HD GVDP_INLINE Vec3f featureNormal(const SurfaceView& s, const NearestTriangle& t) {
+// The pseudonormal of the feature a nearest point lies on (a surfel's normal, or where that
+// cancelled, the direction from its centre).
+GVDP_HD GVDP_INLINE Vec3f featureNormal(const SurfaceView& s, const NearestTriangle& t, Vec3f p) {
+  if (t.surfel != KD_NO_HIT) {
+    const KdSurfel& k = s.surfels[t.surfel];
+    return k.normal.x != 0.0f || k.normal.y != 0.0f || k.normal.z != 0.0f ? k.normal : p - k.centre;
+  }
   const uint32_t* i = s.mesh.indices + 3 * t.triangle;
   switch (t.at.feature) {
     case TriangleFeature::Vertex0:
@@ -154,7 +184,13 @@ GVDP_HD GVDP_INLINE Vec3f shadingNormal(const SurfaceView& s, uint32_t triangle,
 // Whether p is inside the surface, by the pseudonormal of its nearest feature (exact for a
 // closed, consistently oriented mesh, whatever the distance).
 GVDP_HD GVDP_INLINE bool insideOf(Vec3f p, const SurfaceView& s, const NearestTriangle& t) {
-  return t.triangle != KD_NO_HIT && dot(p - t.at.point, featureNormal(s, t)) < 0.0f;
+  return t.found() && dot(p - t.at.point, featureNormal(s, t, p)) < 0.0f;
+}
+
+// The shading normal at a nearest point: interpolated on a triangle, a surfel's own.
+GVDP_HD GVDP_INLINE Vec3f shadingNormal(const SurfaceView& s, const NearestTriangle& t, Vec3f p) {
+  if (t.surfel != KD_NO_HIT) return normalize(featureNormal(s, t, p));
+  return shadingNormal(s, t.triangle, t.at.b1, t.at.b2);
 }
 
 // Whether p is inside the surface, by a ray cast from it (for points far from the surface, where

@@ -20,6 +20,7 @@ struct MeshScene::Device {
   DeviceBuffer<Vec3f> vertices, vertexNormals, edgeNormals;
   DeviceBuffer<uint32_t> indices, leafTriangles;
   DeviceBuffer<KdNode> nodes;
+  DeviceBuffer<KdSurfel> surfels;
 };
 
 namespace {
@@ -58,6 +59,7 @@ std::shared_ptr<const MeshScene> MeshScene::load(const std::string& path, float 
   s->buildMs_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   s->normals_ = meshNormals(s->mesh_);
+  s->surfels_ = kdSurfels(s->mesh_, s->tree_);
 #if GVDP_HAS_CUDA
   if (backend == Backend::Cuda) {
     s->device_ = std::make_unique<Device>();
@@ -68,6 +70,7 @@ std::shared_ptr<const MeshScene> MeshScene::load(const std::string& path, float 
     d.leafTriangles = upload(s->tree_.leafTriangles);
     d.vertexNormals = upload(s->normals_.vertex);
     d.edgeNormals = upload(s->normals_.edge);
+    d.surfels = upload(s->surfels_);
   }
 #endif
   return s;
@@ -78,7 +81,8 @@ MeshWorld MeshScene::hostWorld() const {
       {mesh_.vertices.data(), mesh_.indices.data(), static_cast<uint32_t>(mesh_.triangleCount())},
       tree_.view(),
       normals_.vertex.data(),
-      normals_.edge.data()};
+      normals_.edge.data(),
+      surfels_.data()};
   return {surface, MESH_VOXEL_SIZE0, lattice_};
 }
 
@@ -90,7 +94,8 @@ ProducerKernelsPtr MeshScene::kernels() const {
     world.surface = {{d.vertices.data(), d.indices.data(), world.surface.mesh.triangles},
                      {d.nodes.data(), d.leafTriangles.data(), tree_.bounds},
                      d.vertexNormals.data(),
-                     d.edgeNormals.data()};
+                     d.edgeNormals.data(),
+                     d.surfels.data()};
   }
 #endif
   // The kernels share ownership of this scene, whose memory their producer points into.

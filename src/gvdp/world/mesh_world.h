@@ -25,9 +25,10 @@ namespace gvdp::detail {
 constexpr float MESH_VOXEL_SIZE0 = 1.0f / 1024.0f;  // a placed model is ~1024 finest voxels long
 constexpr float MESH_LATTICE_MIN = 1.5f;            // copies at least half a model apart
 constexpr float MESH_LATTICE_MAX = 1000.0f;
-constexpr int MESH_BOX_CELLS = 16;   // emptyBox looks at most at this many copies
-constexpr double MESH_SLACK = 1e-4;  // covers the float distances of the flags
-constexpr float MESH_SPEED = 0.02f;  // world units per frame along the camera paths
+constexpr int MESH_BOX_CELLS = 16;          // emptyBox looks at most at this many copies
+constexpr double MESH_SLACK = 1e-4;         // covers the float distances of the flags
+constexpr float MESH_SURFEL_VOXELS = 0.5f;  // nodes this many voxels wide count as surfels
+constexpr float MESH_SPEED = 0.02f;         // world units per frame along the camera paths
 
 // A point of the world in the frame of the copy of lattice cell (cx, cz): the copy's model sits
 // at the cell's centre (cx, 0, cz) * lattice.
@@ -63,16 +64,17 @@ struct MeshWorld {
       for (int dx = -reach; dx <= reach; ++dx) {
         MeshCopy c = copyOf(p, dx, dz);
         if (!(boxDistanceSq(c.local, surface.tree.bounds) < best.distanceSq)) continue;
-        NearestTriangle t = nearestTriangle(c.local, surface, best.distanceSq);
-        if (t.triangle != KD_NO_HIT) {
+        NearestTriangle t =
+            nearestTriangle(c.local, surface, best.distanceSq, MESH_SURFEL_VOXELS * voxelSize);
+        if (t.found()) {
           best = t;
           at = c;
         }
       }
-    if (best.triangle != KD_NO_HIT) {
+    if (best.found()) {
       float d = sqrtf(best.distanceSq);
       float signedDistance = insideOf(at.local, surface, best) ? -d : d;
-      Vec3f normal = shadingNormal(surface, best.triangle, best.at.b1, best.at.b2);
+      Vec3f normal = shadingNormal(surface, best, at.local);
       return makeVoxel(albedo(at.cx, at.cz), normal, coverage(signedDistance, voxelSize), false);
     }
     // Farther than a voxel from every surface: opaque inside (only the own copy's box can hold
