@@ -3,8 +3,8 @@
 # issue 15's whole check. The mesh tests (GPU schedulers equal, PSNR against the CPU and the ray
 # cast), memcheck on every scheduler over a mesh world, the kd-tree of a >= 1 M-triangle mesh,
 # the mesh walkthrough against perlin's (bench, 1500x1000), and the README's pictures (frames
-# with their ray-cast references). Writes to $OUT (or out/mesh): tests.txt, memcheck.txt,
-# kdtree.txt, bench_*.md/json, *.png, summary.txt.
+# with their ray-cast references). Writes to $OUT (or out/mesh): summary.txt, and mesh_gpu.tar
+# holding tests.txt, memcheck.txt, kdtree.txt, bench_*.md/json and the pictures (*.png).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out/mesh}"
@@ -38,9 +38,10 @@ bench() {
   echo "bench $name rc=$?" | tee -a "$out/summary.txt"
   cat "$out/bench_$name.md" >>"$out/summary.txt"
 }
-bench lattice --scenes perlin,mesh --mesh "$m/bunny00.off" --lattice 2 --movements walkthrough
+bench lattice --scenes perlin,mesh --mesh "$m/bunny00.off" --lattice 2 --movements walkthrough \
+  --frames 16 --warmup 4
 bench orbit --scenes mesh --mesh "$m/bunny00.off" --movements orbit
-bench x16 --scenes mesh --mesh /tmp/bunny_x16.ply --lattice 2 --movements walkthrough --frames 16
+bench x16 --scenes mesh --mesh /tmp/bunny_x16.ply --movements orbit --frames 16 --warmup 4
 picture() {
   local name=$1
   shift
@@ -52,3 +53,5 @@ picture() {
 picture bunny --mesh "$m/bunny00.off" --movement orbit
 picture dragon --mesh "$m/ChineseDragon-10kv.off" --movement orbit
 picture field --mesh "$m/bunny00.off" --lattice 2 --movement walkthrough
+tar cf /tmp/mesh_gpu.tar -C "$out" --exclude=summary.txt . && find "$out" -mindepth 1 \
+  ! -name summary.txt -delete && mv /tmp/mesh_gpu.tar "$out/"
