@@ -115,22 +115,24 @@ TEST(MeshWorld, EmptyFlagsAndBoxBoundsAreConservative) {
   }
 }
 
-test::Renders meshRun(const std::string& mesh, float lattice, SchedulerKind kind, int frames,
-                      Movement movement, Backend backend = Backend::Cpu, int w = 96, int h = 64) {
+// A mesh sequence's options: the world, its movement, the size.
+SequenceOptions meshOptions(const std::string& mesh, float lattice, Movement movement, int w,
+                            int h) {
   SequenceOptions o;
   o.mesh = mesh;
   o.lattice = lattice;
-  o.frames = frames;
   o.width = w;
   o.height = h;
   o.movement = movement;
+  return o;
+}
+
+test::Renders meshRun(const std::string& mesh, float lattice, SchedulerKind kind, int frames,
+                      Movement movement, Backend backend = Backend::Cpu, int w = 96, int h = 64) {
+  SequenceOptions o = meshOptions(mesh, lattice, movement, w, h);
+  o.frames = frames;
   o.scheduler = resolvedOptions({backend, kind, 0});
-  test::Renders r;
-  renderSequence(o, [&](const Image& im, const FrameStats& st) {
-    r.images.push_back(im);
-    r.stats.push_back(st);
-  });
-  return r;
+  return test::renderRun(o);
 }
 
 TEST(MeshCpu, SchedulersRenderTheSameFramesCloseToTheRayCast) {
@@ -152,12 +154,7 @@ TEST(MeshCpu, SchedulersRenderTheSameFramesCloseToTheRayCast) {
     }
     test::Renders direct = meshRun(path, c.lattice, SchedulerKind::Direct, FRAMES, c.movement);
     auto scene = MeshScene::load(path, c.lattice, Backend::Cpu);
-    SequenceOptions o;
-    o.mesh = path;
-    o.lattice = c.lattice;
-    o.width = 96;
-    o.height = 64;
-    o.movement = c.movement;
+    SequenceOptions o = meshOptions(path, c.lattice, c.movement, 96, 64);
     for (int f = 0; f < FRAMES; ++f) {
       EXPECT_EQ(sp.stats[f].unfinishedPixels, 0);
       EXPECT_GT(psnr(sp.images[f], direct.images[f]), 40.0) << "frame " << f;
@@ -190,12 +187,7 @@ TEST(MeshGpu, SchedulersRenderTheSameFramesCloseToTheCpuAndTheRayCast) {
     }
     test::Renders cpu = meshRun(path, lattice, SchedulerKind::Sp, 2, movement, Backend::Cpu, W, H);
     auto scene = MeshScene::load(path, lattice, Backend::Cpu);
-    SequenceOptions o;
-    o.mesh = path;
-    o.lattice = lattice;
-    o.width = W;
-    o.height = H;
-    o.movement = movement;
+    SequenceOptions o = meshOptions(path, lattice, movement, W, H);
     for (int f = 0; f < 2; ++f) {
       Image reference;
       scene->renderReference(frameOf(o, f), reference);

@@ -56,6 +56,16 @@ struct Renders {
   std::vector<FrameStats> stats;
 };
 
+// Every frame of a sequence's options (a mesh world's too).
+inline Renders renderRun(const SequenceOptions& o) {
+  Renders r;
+  renderSequence(o, [&](const Image& im, const FrameStats& st) {
+    r.images.push_back(im);
+    r.stats.push_back(st);
+  });
+  return r;
+}
+
 inline Renders renderRun(const std::string& scene, SchedulerOptions s, int frames, int w, int h,
                          Movement movement = Movement::Walkthrough, TileOptions tiles = {}) {
   SequenceOptions o;
@@ -66,12 +76,7 @@ inline Renders renderRun(const std::string& scene, SchedulerOptions s, int frame
   o.movement = movement;
   o.scheduler = s;
   o.tiles = tiles;
-  Renders r;
-  renderSequence(o, [&](const Image& im, const FrameStats& st) {
-    r.images.push_back(im);
-    r.stats.push_back(st);
-  });
-  return r;
+  return renderRun(o);
 }
 
 // The same frames rendered by the scheduler alone (no tiles, no retries): its own degraded
