@@ -121,6 +121,22 @@ GVDP_HD GVDP_INLINE uint32_t ringTake(const Ring& r, uint32_t position) {
   return static_cast<uint32_t>(v);
 }
 
+// Warps per block of the GPU's persistent kernel (pt_worker.cuh: PT_BLOCK / 32).
+constexpr uint32_t PT_WORKER_WARPS = 8;
+
+// Productions in flight that any idle warp of the grid may help compute (the GPU's workers,
+// pt_worker.cuh; null on the CPU): per worker warp `w` (block * PT_WORKER_WARPS + warp), its
+// brick's key, staged samples and chunk counters, and bit w of `open` while it has chunks to claim.
+struct PtProductions {
+  Rgba8* stage;        // BRICK_SAMPLE_COUNT per worker warp
+  BrickKey* key;       // per worker warp
+  uint32_t* next;      // next chunk to claim (runs past the chunk count)
+  uint32_t* done;      // chunks computed
+  uint32_t* nonEmpty;  // nonzero once a chunk found a non-empty sample
+  uint32_t* open;      // a bit per worker warp
+  uint32_t openWords;
+};
+
 struct PtContext {
   FrameSetup frame;
   CacheView cache;
@@ -134,6 +150,7 @@ struct PtContext {
   uint32_t* waitNext;         // per pixel
   uint32_t* counters;         // PtCounter, PT_COUNTER_STRIDE apart
   uint32_t itemCount;         // items of the tiled screen (tileCount * 64)
+  PtProductions productions;  // the GPU's (pt_worker.cuh)
 
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
 };

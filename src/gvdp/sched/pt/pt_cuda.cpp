@@ -15,11 +15,19 @@ class PtCuda final : public SpFrameCuda {
         counters_(PtLayout::COUNTERS),
         lookaheadSlots_(PtLayout::lookaheadCapacity()),
         blocks_(cudaProducer().ptWorkerBlocks()),
-        lookahead_(o.lookahead) {}
+        lookahead_(o.lookahead),
+        workers_(static_cast<uint32_t>(blocks_) * PT_WORKER_WARPS),
+        stage_(size_t{workers_} * BRICK_SAMPLE_COUNT),
+        productionKey_(workers_),
+        productionCounters_(3 * size_t{workers_} + (workers_ + 31) / 32) {
+    fillDevice(productionCounters_.data(), 0, productionCounters_.bytes(), stream());
+  }
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCuda::memory();
     m.push_back({"pt_queues_and_wait_lists", layout_.bytes()});
+    m.push_back(
+        {"pt_productions", stage_.bytes() + productionKey_.bytes() + productionCounters_.bytes()});
     return m;
   }
 
@@ -52,7 +60,7 @@ class PtCuda final : public SpFrameCuda {
   void resize(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
     if (waitNext_.size() == n) return;
-    layout_ = {n, static_cast<uint32_t>(blocks_) * 8};  // worker warps (pt_worker.cuh: PT_WARPS)
+    layout_ = {n, workers_};
     raySlots_ = DeviceBuffer<uint64_t>(layout_.rayCapacity());
     taskSlots_ = DeviceBuffer<uint64_t>(layout_.taskCapacity());
     freeSlots_ = DeviceBuffer<uint64_t>(layout_.freeCapacity());
@@ -72,6 +80,10 @@ class PtCuda final : public SpFrameCuda {
         {raySlots_.data(), taskSlots_.data(), freeSlots_.data(), lookaheadSlots_.data(),
          taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
         lookahead_);
+    uint32_t* words = productionCounters_.data();
+    ctx.productions = {stage_.data(),       productionKey_.data(), words,
+                       words + workers_,    words + 2 * workers_,  words + 3 * workers_,
+                       (workers_ + 31) / 32};
     launchPtRingsInit(ctx, layout_, stream());
     return ctx;
   }
@@ -81,6 +93,10 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
   uint32_t lookahead_;
+  uint32_t workers_;  // warps of the persistent kernel
+  DeviceBuffer<Rgba8> stage_;
+  DeviceBuffer<BrickKey> productionKey_;
+  DeviceBuffer<uint32_t> productionCounters_;  // next, done, nonEmpty per worker; open bits
   PtLayout layout_{};
 };
 

@@ -17,6 +17,7 @@ namespace gvdp::detail {
 // 3 blocks of 8 warps per SM (80 registers): measured on an H100 against 2 (125 registers) and
 // 4 (64, spilling), perlin 1500x1000: 24 ms per frame against 39 and 25.
 constexpr int PT_BLOCK = 256, PT_WARPS = PT_BLOCK / 32, PT_MIN_BLOCKS = 3;
+static_assert(PT_WARPS == static_cast<int>(PT_WORKER_WARPS));
 constexpr unsigned FULL_MASK = 0xffffffffu;
 
 // Lane 0's open timeline span.
@@ -106,31 +107,25 @@ __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, 
   }
 }
 
-// Productions in flight in a block, whose chunks (4 samples per lane) any warp of the block may
-// compute: the owner warp computes chunks until none is left, then waits for its helpers. Only
-// warps with nothing else to take help (helping before rendering halved production throughput,
-// measured); in the frame's tail, a chain of dependent productions, they cut latency up to 8x.
+// Productions in flight (PtProductions, in device memory), whose chunks (one sample per lane)
+// any warp of the grid may compute: the owner warp computes chunks until none is left, then waits
+// for its helpers. Only warps with nothing else to take help (helping before rendering halved
+// production throughput, measured), their own block's productions first; in the frame's tail, a
+// chain of dependent productions, up to 32 warps of any SMs compute one brick at once (a block's
+// 8 warps, 4 samples a lane, before: mesh bricks of 5-20 ms each made a 54 ms tail, measured).
 //
-// Warps hand these words to each other without a block barrier (the set of helpers is not known
-// in advance), so every access to them is a strong one: writes are atomic exchanges or
-// read-modify-writes, reads are volatile (relaxed) loads. The PTX memory model then sees no data
-// race, and the release/acquire pairs below order the data: the owner publishes key and counters
-// (fence, then `next`), a helper acquires them by claiming a chunk (atomic on `next`, then
-// fence); a helper publishes its samples (fence, then `done`), the owner acquires them by
-// reading `done` (then fence). compute-sanitizer's racecheck, which orders accesses only through
-// barriers and atomics, agrees: plain stores here were its 5 hazards (stage and key).
-constexpr int PRODUCE_CHUNK = 128, PRODUCE_CHUNKS = (BRICK_SAMPLE_COUNT + 127) / 128;
+// Warps of different blocks hand these words to each other, so every access is a strong one at
+// device scope: writes are atomic exchanges, read-modify-writes or relaxed stores, reads relaxed
+// loads, and release/acquire pairs order the data: the owner publishes key and counters (fence,
+// then `next`, then its `open` bit), a helper acquires them by claiming a chunk (atomic on
+// `next`, then fence); every lane of a helper fences its samples before lane 0 counts the chunk
+// in `done`, and the owner acquires them by reading `done` (then every lane fences). A production
+// is reused only by its owner, after its last chunk is done; a helper that claims past the last
+// chunk (a stale `open` bit) does nothing.
+constexpr int PRODUCE_CHUNK = 32, PRODUCE_CHUNKS = (BRICK_SAMPLE_COUNT + 31) / 32;
+constexpr uint32_t NO_PRODUCTION = 0xffffffffu;
 
-struct BlockProductions {
-  Rgba8 stage[PT_WARPS][BRICK_SAMPLE_COUNT];
-  BrickKey key[PT_WARPS];
-  uint32_t next[PT_WARPS];      // next chunk to claim (runs past PRODUCE_CHUNKS)
-  uint32_t done[PT_WARPS];      // chunks computed
-  uint32_t nonEmpty[PT_WARPS];  // nonzero once a chunk found a non-empty sample
-  uint32_t open;                // bit w: warp w's production has chunks to claim
-};
-
-// A strong store of a word that other warps of the block read without a barrier.
+// A strong store of a word that other warps read without a barrier.
 __device__ inline void handOver(uint32_t* word, uint32_t value) {
   atomicExch(word, value);
 }
@@ -143,63 +138,74 @@ __device__ inline void handOverKey(BrickKey* key, const BrickKey& value) {
   handOver(k + 3, static_cast<uint32_t>(value.level));
 }
 
-// Claims and computes chunks of warp `owner`'s production until none is left.
+__device__ inline uint32_t workerOf(int warp) {
+  return blockIdx.x * PT_WORKER_WARPS + static_cast<uint32_t>(warp);
+}
+
+// Claims and computes chunks of worker `owner`'s production until none is left.
 template <class P>
-__device__ void produceChunks(const P& producer, BlockProductions& bp, int owner, int lane) {
+__device__ void produceChunks(const P& producer, const PtProductions& pp, uint32_t owner,
+                              int lane) {
   for (;;) {
     uint32_t c = 0;
     if (lane == 0) {
-      c = atomicAdd(&bp.next[owner], 1u);
-      __threadfence_block();  // acquire: the key the owner wrote before opening the production
+      c = atomicAdd(&pp.next[owner], 1u);
+      __threadfence();  // acquire: the key the owner wrote before opening the production
     }
     c = __shfl_sync(FULL_MASK, c, 0);
     if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return;
     // The last chunk is taken: no more help (helpers would spin on an exhausted production).
-    if (lane == 0 && c == PRODUCE_CHUNKS - 1) atomicAnd(&bp.open, ~(1u << owner));
+    if (lane == 0 && c == PRODUCE_CHUNKS - 1) atomicAnd(&pp.open[owner / 32], ~(1u << owner % 32));
     __syncwarp();  // lane 0's acquire before every lane's read of the key
-    BrickKey key = loadBrickKey(&bp.key[owner]);
-    bool bounded = brickBoundedEmpty(producer, key);  // the producer's box bound: no samples
+    BrickKey key = loadBrickKey(&pp.key[owner]);
+    int s = static_cast<int>(c) * PRODUCE_CHUNK + lane;
     bool nonEmpty = false;
-    int end = min((static_cast<int>(c) + 1) * PRODUCE_CHUNK, BRICK_SAMPLE_COUNT);
-    for (int s = static_cast<int>(c) * PRODUCE_CHUNK + lane; s < end; s += 32) {
-      VoxelSample v = bounded ? VoxelSample{0u, true} : produceBrickSample(producer, key, s);
-      handOver(&bp.stage[owner][s], v.rgba);
-      nonEmpty = nonEmpty || !v.empty;
+    if (s < BRICK_SAMPLE_COUNT) {
+      VoxelSample v = produceBrickSample(producer, key, s);
+      storeRelaxed32(&pp.stage[size_t{owner} * BRICK_SAMPLE_COUNT + s], v.rgba);
+      nonEmpty = !v.empty;
     }
     nonEmpty = __any_sync(FULL_MASK, nonEmpty);
-    __syncwarp();  // every lane's samples before lane 0's release
+    __threadfence();  // release: this lane's sample before `done`
+    __syncwarp();
     if (lane == 0) {
-      if (nonEmpty) atomicOr(&bp.nonEmpty[owner], 1u);
-      __threadfence_block();  // release: the samples and nonEmpty before `done`
-      atomicAdd(&bp.done[owner], 1u);
+      if (nonEmpty) atomicOr(&pp.nonEmpty[owner], 1u);
+      __threadfence();  // release: nonEmpty before `done`
+      atomicAdd(&pp.done[owner], 1u);
     }
   }
 }
 
-// Algorithm 2 by warp `warp` (helped by idle warps of its block), then the task's waiting rays
-// queued again as full warps.
+// Algorithm 2 by warp `warp` (helped by idle warps), then the task's waiting rays queued again
+// as full warps. A brick the producer's box bound clears is committed EMPTY without chunks.
 template <class P>
 __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P& producer,
-                            uint32_t id, BlockProductions& bp, int warp, int lane) {
+                            uint32_t id, int warp, int lane) {
+  const PtProductions& pp = ctx.productions;
+  const uint32_t me = workerOf(warp);
   BrickKey key = loadTaskKey(ctx, id);
-  if (lane == 0) {  // no helper is in this production's words: the last one counted its chunk
-    handOverKey(&bp.key[warp], key);
-    handOver(&bp.nonEmpty[warp], 0u);
-    handOver(&bp.done[warp], 0u);
-    __threadfence_block();  // release: key and counters before the first claim
-    atomicExch(&bp.next[warp], 0u);
-    __threadfence_block();
-    atomicOr(&bp.open, 1u << warp);
+  bool empty = true;
+  if (!brickBoundedEmpty(producer, key)) {
+    if (lane == 0) {  // no helper is in this production's words: the last one counted its chunk
+      handOverKey(&pp.key[me], key);
+      handOver(&pp.nonEmpty[me], 0u);
+      handOver(&pp.done[me], 0u);
+      __threadfence();  // release: key and counters before the first claim
+      atomicExch(&pp.next[me], 0u);
+      __threadfence();
+      atomicOr(&pp.open[me / 32], 1u << me % 32);
+    }
+    __syncwarp();
+    produceChunks(producer, pp, me, lane);
+    if (lane == 0) {
+      while (loadRelaxed32(&pp.done[me]) < static_cast<uint32_t>(PRODUCE_CHUNKS)) __nanosleep(20);
+      __threadfence();  // acquire: every helper's samples
+    }
+    __syncwarp();
+    __threadfence();  // and for every lane that reads them
+    empty = loadRelaxed32(&pp.nonEmpty[me]) == 0;
   }
-  __syncwarp();
-  produceChunks(producer, bp, warp, lane);
-  if (lane == 0) {
-    while (loadRelaxed32(&bp.done[warp]) < static_cast<uint32_t>(PRODUCE_CHUNKS)) __nanosleep(20);
-    __threadfence_block();  // acquire: every helper's samples
-  }
-  __syncwarp();
-  bool empty = loadRelaxed32(&bp.nonEmpty[warp]) == 0;
-  const Rgba8* stage = bp.stage[warp];
+  const Rgba8* stage = pp.stage + size_t{me} * BRICK_SAMPLE_COUNT;
   constexpr int PER = (BRICK_SAMPLE_COUNT + 31) / 32;
   commitBrick<PER>(WarpScope{lane}, producer, ctx.cache, pool, key, empty,
                    [&](int, int s) { return loadRelaxed32(&stage[s]); });
@@ -229,6 +235,27 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
   }
 }
 
+// An open production for an idle warp to help: one of its own block's, else the first found in
+// the grid's `open` bits, read from its own block's word on (blocks start their search apart).
+__device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
+  const uint32_t first = workerOf(0), home = first / 32;
+  uint32_t own = 0;
+  if (lane == 0) own = loadRelaxed32(&pp.open[home]) >> first % 32 & ((1u << PT_WORKER_WARPS) - 1u);
+  own = __shfl_sync(FULL_MASK, own, 0);
+  if (own) return first + static_cast<uint32_t>(__ffs(static_cast<int>(own)) - 1);
+  for (uint32_t base = 0; base < pp.openWords; base += 32) {
+    uint32_t k = base + static_cast<uint32_t>(lane), w = (home + k) % pp.openWords;
+    uint32_t bits = k < pp.openWords ? loadRelaxed32(&pp.open[w]) : 0u;
+    unsigned any = __ballot_sync(FULL_MASK, bits != 0u);
+    if (any) {
+      int src = __ffs(static_cast<int>(any)) - 1;
+      uint32_t word = __shfl_sync(FULL_MASK, w, src), b = __shfl_sync(FULL_MASK, bits, src);
+      return word * 32 + static_cast<uint32_t>(__ffs(static_cast<int>(b)) - 1);
+    }
+  }
+  return NO_PRODUCTION;
+}
+
 // One worker (a warp) of pt's loop (pt_body.h): every lane runs every step, lane 0 claims and
 // shares what it claimed. With nothing to take, the warp helps a production of its block (the
 // tail of the frame), or sleeps with an exponential backoff.
@@ -237,7 +264,6 @@ struct WarpWorker {
   const PtContext& ctx;
   const BrickPool& pool;
   const P& producer;
-  BlockProductions& bp;
   int warp, lane;
   WarpSpan span;
   unsigned backoff = 32;
@@ -254,7 +280,7 @@ struct WarpWorker {
     span.begin(TaskKind::Produce);
     uint32_t id = 0;
     if (lane == 0) id = ringTake(ctx.tasks, position);
-    produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), bp, warp, lane);
+    produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), warp, lane);
     worked();
   }
   __device__ void renderQueued(uint32_t position, uint32_t n) {
@@ -278,12 +304,10 @@ struct WarpWorker {
     worked();
   }
   __device__ void idle() {
-    uint32_t open = 0;
-    if (lane == 0) open = loadRelaxed32(&bp.open) & ~(1u << warp);
-    open = __shfl_sync(FULL_MASK, open, 0);
-    if (open) {
+    uint32_t open = openProduction(ctx.productions, lane);
+    if (open != NO_PRODUCTION) {
       span.begin(TaskKind::Produce);
-      produceChunks(producer, bp, __ffs(static_cast<int>(open)) - 1, lane);
+      produceChunks(producer, ctx.productions, open, lane);
       worked();
       return;
     }
@@ -303,18 +327,10 @@ template <class P>
 __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
     ptWorkerKernel(const __grid_constant__ PtContext ctx, const __grid_constant__ BrickPool pool,
                    const __grid_constant__ P producer) {
-  __shared__ BlockProductions bp;
   int lane = static_cast<int>(threadIdx.x & 31), warp = static_cast<int>(threadIdx.x >> 5);
-  if (threadIdx.x == 0) bp.open = 0;
-  if (lane == 0) bp.next[warp] = PRODUCE_CHUNKS;
-  __syncthreads();
-  WarpWorker<P> w{ctx,
-                  pool,
-                  producer,
-                  bp,
-                  warp,
-                  lane,
-                  WarpSpan{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()}};
+  WarpWorker<P> w{
+      ctx,  pool, producer,
+      warp, lane, WarpSpan{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()}};
   ptWorkerLoop(ctx, w);
 }
 
