@@ -20,7 +20,10 @@ class PtCuda final : public SpFrameCuda {
         stage_(size_t{workers_} * BRICK_SAMPLE_COUNT),
         productionKey_(workers_),
         productionCounters_(3 * size_t{workers_} + (workers_ + 31) / 32) {
+    // zeros: no open bit; and the words a production's atomic exchanges read are initialised
     fillDevice(productionCounters_.data(), 0, productionCounters_.bytes(), stream());
+    fillDevice(productionKey_.data(), 0, productionKey_.bytes(), stream());
+    fillDevice(stage_.data(), 0, stage_.bytes(), stream());
   }
 
   MemoryReport memory() const override {
