@@ -6,10 +6,10 @@
 
 #include <random>
 
-#include "gvdp/mesh/kdtree_nearest.h"
-#include "gvdp/mesh/kdtree_surfels.h"
+#include "gvdp/mesh/mesh_bvh.h"
 #include "gvdp/mesh/mesh_io.h"
 #include "gvdp/mesh/mesh_normals.h"
+#include "gvdp/mesh/surface_queries.h"
 #include "gvdp/sched/mesh_scene.h"
 #include "mesh_test_util.h"
 #include "test_util.h"
@@ -45,14 +45,12 @@ TEST(MeshNearest, DistanceAndSideEqualBruteForceAndTheSpheres) {
   Mesh m = twoSpheres();
   MeshNormals n = meshNormals(m);
   KdTree tree = buildKdTreeSequential(m);
+  MeshBvh bvh = buildMeshBvh(m);
   SurfaceView s{{m.vertices.data(), m.indices.data(), static_cast<uint32_t>(m.triangleCount())},
                 tree.view(),
                 n.vertex.data(),
                 n.edge.data(),
-                nullptr};
-  std::vector<KdSurfel> surfels = kdSurfels(m, tree);
-  SurfaceView withSurfels = s;
-  withSurfels.surfels = surfels.data();
+                bvh.view()};
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.6f, 2.4f);
   int inside = 0;
@@ -62,9 +60,8 @@ TEST(MeshNearest, DistanceAndSideEqualBruteForceAndTheSpheres) {
     NearestTriangle t = nearestTriangle(p, s, 3e38f);
     ASSERT_NE(t.triangle, KD_NO_HIT);
     EXPECT_EQ(t.distanceSq, brute) << p.x << "," << p.y << "," << p.z;
-    // The surfels' boxes prune exactly; standing in, a surfel errs by less than its width.
-    EXPECT_EQ(nearestTriangle(p, withSurfels, 3e38f).distanceSq, brute);
-    NearestTriangle coarse = nearestTriangle(p, withSurfels, 3e38f, 0.1f);
+    // Standing in, a surfel errs by less than its width.
+    NearestTriangle coarse = nearestTriangle(p, s, 3e38f, 0.1f);
     EXPECT_NEAR(std::sqrt(coarse.distanceSq), std::sqrt(brute), 0.1f);
     // A bounded query finds it exactly when it lies within the reach.
     EXPECT_EQ(nearestTriangle(p, s, 0.04f).triangle != KD_NO_HIT, brute < 0.04f);
@@ -77,6 +74,39 @@ TEST(MeshNearest, DistanceAndSideEqualBruteForceAndTheSpheres) {
     inside += truth;
   }
   EXPECT_GT(inside, 200);  // both sides were tested
+
+  // The hierarchy: every triangle in exactly one leaf, a node's box holding its children's; and
+  // its box test equals brute force over the triangles' boxes.
+  std::vector<int> seen(m.triangleCount(), 0);
+  for (const MeshBvhNode& node : bvh.nodes) {
+    if (node.count > 0) {
+      for (uint32_t k = 0; k < node.count; ++k) ++seen[bvh.triangles[node.first + k]];
+      continue;
+    }
+    for (uint32_t c : {node.first, node.first + 1}) {
+      Box3f both = merge(node.box, bvh.nodes[c].box);
+      EXPECT_TRUE(both.lo.x == node.box.lo.x && both.lo.y == node.box.lo.y &&
+                  both.lo.z == node.box.lo.z && both.hi.x == node.box.hi.x &&
+                  both.hi.y == node.box.hi.y && both.hi.z == node.box.hi.z);
+    }
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(m.triangleCount()));
+  int met = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Vec3f c{u(rng), u(rng) * 0.8f, u(rng) * 0.8f};
+    Vec3f h = Vec3f{1.0f, 1.0f, 1.0f} * (0.002f + 0.1f * std::abs(u(rng)));
+    Box3f query{c - h, c + h};
+    bool brute = false;
+    for (size_t t = 0; t < m.triangleCount() && !brute; ++t) {
+      Box3f b = triangleBounds(m, t);
+      brute = query.lo.x <= b.hi.x && b.lo.x <= query.hi.x && query.lo.y <= b.hi.y &&
+              b.lo.y <= query.hi.y && query.lo.z <= b.hi.z && b.lo.z <= query.hi.z;
+    }
+    EXPECT_EQ(anyTriangleBoxMeets(query, s), brute);
+    met += brute;
+  }
+  EXPECT_GT(met, 200);
+  EXPECT_LT(met, 1800);
 }
 
 TEST(MeshWorld, EmptyFlagsAndBoxBoundsAreConservative) {

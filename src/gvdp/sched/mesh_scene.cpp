@@ -18,9 +18,9 @@ namespace gvdp::detail {
 #if GVDP_HAS_CUDA
 struct MeshScene::Device {
   DeviceBuffer<Vec3f> vertices, vertexNormals, edgeNormals;
-  DeviceBuffer<uint32_t> indices, leafTriangles;
+  DeviceBuffer<uint32_t> indices, leafTriangles, bvhTriangles;
   DeviceBuffer<KdNode> nodes;
-  DeviceBuffer<KdSurfel> surfels;
+  DeviceBuffer<MeshBvhNode> bvhNodes;
 };
 
 namespace {
@@ -59,7 +59,7 @@ std::shared_ptr<const MeshScene> MeshScene::load(const std::string& path, float 
   s->buildMs_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   s->normals_ = meshNormals(s->mesh_);
-  s->surfels_ = kdSurfels(s->mesh_, s->tree_);
+  s->bvh_ = buildMeshBvh(s->mesh_);
 #if GVDP_HAS_CUDA
   if (backend == Backend::Cuda) {
     s->device_ = std::make_unique<Device>();
@@ -70,7 +70,8 @@ std::shared_ptr<const MeshScene> MeshScene::load(const std::string& path, float 
     d.leafTriangles = upload(s->tree_.leafTriangles);
     d.vertexNormals = upload(s->normals_.vertex);
     d.edgeNormals = upload(s->normals_.edge);
-    d.surfels = upload(s->surfels_);
+    d.bvhNodes = upload(s->bvh_.nodes);
+    d.bvhTriangles = upload(s->bvh_.triangles);
   }
 #endif
   return s;
@@ -82,7 +83,7 @@ MeshWorld MeshScene::hostWorld() const {
       tree_.view(),
       normals_.vertex.data(),
       normals_.edge.data(),
-      surfels_.data()};
+      bvh_.view()};
   return {surface, MESH_VOXEL_SIZE0, lattice_};
 }
 
@@ -95,7 +96,7 @@ ProducerKernelsPtr MeshScene::kernels() const {
                      {d.nodes.data(), d.leafTriangles.data(), tree_.bounds},
                      d.vertexNormals.data(),
                      d.edgeNormals.data(),
-                     d.surfels.data()};
+                     {d.bvhNodes.data(), d.bvhTriangles.data()}};
   }
 #endif
   // The kernels share ownership of this scene, whose memory their producer points into.

@@ -1,8 +1,8 @@
 // A mesh world ready to render (world/mesh_world.h): the file read and placed, its kd-tree built
 // (on the GPU for the cuda backend, Wald and Havran's sequential builder on the CPU), its
-// pseudonormals and surfels, and for the cuda backend all of it on the device; the producer kernels
-// of its MeshWorld (instantiated in mesh_scene.cpp, an nvcc translation unit in CUDA builds) keep
-// the scene alive as long as a renderer holds them.
+// pseudonormals and its distance hierarchy (mesh_bvh.h), and for the cuda backend all of it on
+// the device; the producer kernels of its MeshWorld (instantiated in mesh_scene.cpp, an nvcc
+// translation unit in CUDA builds) keep the scene alive as long as a renderer holds them.
 #pragma once
 
 #include <memory>
@@ -10,7 +10,7 @@
 
 #include "gvdp/base/image.h"
 #include "gvdp/mesh/kdtree_build.h"
-#include "gvdp/mesh/kdtree_surfels.h"
+#include "gvdp/mesh/mesh_bvh.h"
 #include "gvdp/mesh/mesh_normals.h"
 #include "gvdp/render/frame.h"
 #include "gvdp/sched/producer_kernels.h"
@@ -45,7 +45,7 @@ class MeshScene : public std::enable_shared_from_this<MeshScene> {
   Mesh mesh_;
   KdTree tree_;
   MeshNormals normals_;
-  std::vector<KdSurfel> surfels_;
+  MeshBvh bvh_;
   float lattice_ = 0.0f;
   Backend backend_ = Backend::Cpu;
   double buildMs_ = 0.0;

@@ -5,17 +5,18 @@
 // the nearest feature (mesh/mesh_normals.h), its colour the shaded albedo at the interpolated
 // vertex normal. The distance is needed within a voxel of the surface only: points farther are
 // inside (opaque) or outside (clear) by a ray cast (insideByRay), since a nearest query over the
-// margin would visit much of the tree at coarse levels. All queries go through the kd-tree
-// (mesh/kdtree_nearest.h). Exactness of skipping: the empty flag is raised only when the point is
-// outside and no triangle's box meets the cube of EMPTY_MARGIN_VOXELS voxels around it, and
-// emptyBox() only when no triangle's box meets the box grown by that margin and the box is
+// margin would visit much of the hierarchy at coarse levels. Distances and box tests go through
+// the distance hierarchy (mesh/mesh_bvh.h: coarse voxels take its surfels), ray casts through
+// the kd-tree (mesh/surface_queries.h). Exactness of skipping: the empty flag is raised only when
+// the point is outside and no triangle's box meets the cube of EMPTY_MARGIN_VOXELS voxels around
+// it, and emptyBox() only when no triangle's box meets the box grown by that margin and the box is
 // outside: the same test for every point of the box.
 #pragma once
 
 #include <cstdint>
 
 #include "gvdp/base/camera.h"
-#include "gvdp/mesh/kdtree_nearest.h"
+#include "gvdp/mesh/surface_queries.h"
 #include "gvdp/world/hash.h"
 #include "gvdp/world/producer.h"
 #include "gvdp/world/spheres.h"  // paletteColour

@@ -1,26 +1,29 @@
-// Distance queries through a kd-tree (kdtree.h), GVDP_HD over PODs: the triangle nearest to a
-// point with the feature (face, edge, vertex) its nearest point lies on, the signed distance
-// that feature's pseudonormal gives (mesh_normals.h), and whether any triangle's box meets a box.
-// Nearest: front-to-back over the tree with a stack of far children and their squared distance
-// lower bounds; a node is skipped when its bound is not below the best so far. Ties between
-// equally near triangles keep the first found: a query's answer depends on the point alone.
+// Queries on a mesh's surface, GVDP_HD over PODs: the triangle nearest to a point with the
+// feature (face, edge, vertex) its nearest point lies on, the signed distance that feature's
+// pseudonormal gives (mesh_normals.h), whether any triangle's box meets a box (both through the
+// distance hierarchy, mesh_bvh.h), and inside or outside by a ray cast (through the kd-tree).
+// Nearest: the nearer child first, with a stack of far children and their squared distance lower
+// bounds (their boxes'); a node is skipped when its bound is not below the best so far. Ties
+// between equally near triangles keep the first found: a query's answer depends on the point
+// alone.
 #pragma once
 
 #include <cstdint>
 
 #include "gvdp/mesh/kdtree.h"
 #include "gvdp/mesh/kdtree_raycast.h"
-#include "gvdp/mesh/kdtree_surfels.h"
+#include "gvdp/mesh/mesh_bvh.h"
 
 namespace gvdp::detail {
 
-// A mesh's surface in memory it does not own: vertices, triangles, the tree and the normals.
+// A mesh's surface in memory it does not own: vertices, triangles, the kd-tree, the normals and
+// the distance hierarchy.
 struct SurfaceView {
   MeshView mesh;
   KdTreeView tree;
   const Vec3f* vertexNormals;  // one per vertex
   const Vec3f* edgeNormals;    // three per triangle
-  const KdSurfel* surfels;     // one per node (kdtree_surfels.h)
+  MeshBvhView bvh;
 };
 
 // Where on a triangle its nearest point lies.
@@ -69,13 +72,13 @@ struct NearestTriangle {
   float distanceSq;   // the reach asked for when none within it
   uint32_t triangle;  // KD_NO_HIT: none, or a surfel
   NearestPoint at;
-  uint32_t surfel = KD_NO_HIT;  // the node whose surfel stood in for its triangles, if any
+  uint32_t surfel = KD_NO_HIT;  // the hierarchy's node whose surfel stood in, if any
 
   GVDP_HD bool found() const { return triangle != KD_NO_HIT || surfel != KD_NO_HIT; }
 };
 
 // The point of a surfel's disc (radius: half its width) nearest to p.
-GVDP_HD GVDP_INLINE Vec3f nearestOnSurfel(Vec3f p, const KdSurfel& s) {
+GVDP_HD GVDP_INLINE Vec3f nearestOnSurfel(Vec3f p, const MeshBvhNode& s) {
   Vec3f w = p - s.centre;
   Vec3f lateral = w - s.normal * dot(w, s.normal);
   float l = length(lateral), r = 0.5f * surfelWidth(s);
@@ -90,42 +93,39 @@ GVDP_HD GVDP_INLINE float boxDistanceSq(Vec3f p, Box3f b) {
   return dx * dx + dy * dy + dz * dz;
 }
 
-// The triangle nearest to p among those closer than sqrt(reachSq). With surfels, a node is
-// skipped when its triangles' box is not nearer than the best so far (empty nodes always), and
-// one whose box is at most `surfelAt` wide answers with its surfel (0: triangles only).
+// The triangle nearest to p among those closer than sqrt(reachSq); a node whose box is at most
+// `surfelAt` wide answers with its surfel (0: triangles only, the exact nearest).
 GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& s, float reachSq,
                                                     float surfelAt = 0.0f) {
   NearestTriangle best{reachSq, KD_NO_HIT, {}};
-  float bound = boxDistanceSq(p, s.tree.bounds);
-  if (!(bound < best.distanceSq)) return best;
+  const MeshBvhNode* nodes = s.bvh.nodes;
+  if (!(boxDistanceSq(p, nodes[0].box) < best.distanceSq)) return best;
   struct Pending {
     uint32_t node;
     float boundSq;
-  } stack[KD_STACK_SIZE];
+  } stack[MESH_BVH_STACK];
   int top = 0;
   uint32_t node = 0;
   for (;;) {
-    KdNode n = s.tree.nodes[node];
-    float width = s.surfels ? surfelWidth(s.surfels[node]) : 3.0e38f;
-    if (s.surfels && !(boxDistanceSq(p, s.surfels[node].box) < best.distanceSq)) {
-      // nothing nearer under this node
-    } else if (s.surfels && width <= surfelAt) {
-      Vec3f q = nearestOnSurfel(p, s.surfels[node]);
+    const MeshBvhNode& n = nodes[node];
+    if (surfelAt > 0.0f && surfelWidth(n) <= surfelAt) {
+      Vec3f q = nearestOnSurfel(p, n);
       Vec3f d = p - q;
       float dSq = dot(d, d);
       if (dSq < best.distanceSq) best = {dSq, KD_NO_HIT, {q, 0.0f, 0.0f, {}}, node};
-    } else if (!isLeaf(n)) {
-      int axis = splitAxis(n);
-      float gap = component(p, axis) - splitPosition(n);
-      bool belowFirst = gap < 0.0f;
-      float farSq = fmaxf(bound, gap * gap);
-      if (farSq < best.distanceSq)
-        stack[top++] = {belowFirst ? rightChild(n) : leftChild(n), farSq};
-      node = belowFirst ? leftChild(n) : rightChild(n);
-      continue;
+    } else if (n.count == 0) {
+      float left = boxDistanceSq(p, nodes[n.first].box);
+      float right = boxDistanceSq(p, nodes[n.first + 1].box);
+      bool leftFirst = left <= right;
+      float nearSq = leftFirst ? left : right, farSq = leftFirst ? right : left;
+      if (farSq < best.distanceSq) stack[top++] = {leftFirst ? n.first + 1 : n.first, farSq};
+      if (nearSq < best.distanceSq) {
+        node = leftFirst ? n.first : n.first + 1;
+        continue;
+      }
     } else {
-      for (uint32_t k = 0; k < leafCount(n); ++k) {
-        uint32_t tri = s.tree.leafTriangles[leafFirst(n) + k];
+      for (uint32_t k = 0; k < n.count; ++k) {
+        uint32_t tri = s.bvh.triangles[n.first + k];
         const uint32_t* i = s.mesh.indices + 3 * tri;
         NearestPoint q = nearestOnTriangle(p, s.mesh.vertices[i[0]], s.mesh.vertices[i[1]],
                                            s.mesh.vertices[i[2]]);
@@ -139,7 +139,6 @@ GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& 
       --top;
     } while (!(stack[top].boundSq < best.distanceSq));
     node = stack[top].node;
-    bound = stack[top].boundSq;
   }
 }
 
@@ -147,7 +146,7 @@ GVDP_HD GVDP_INLINE NearestTriangle nearestTriangle(Vec3f p, const SurfaceView& 
 // cancelled, the direction from its centre).
 GVDP_HD GVDP_INLINE Vec3f featureNormal(const SurfaceView& s, const NearestTriangle& t, Vec3f p) {
   if (t.surfel != KD_NO_HIT) {
-    const KdSurfel& k = s.surfels[t.surfel];
+    const MeshBvhNode& k = s.bvh.nodes[t.surfel];
     return k.normal.x != 0.0f || k.normal.y != 0.0f || k.normal.z != 0.0f ? k.normal : p - k.centre;
   }
   const uint32_t* i = s.mesh.indices + 3 * t.triangle;
@@ -222,26 +221,28 @@ GVDP_HD GVDP_INLINE bool anyTriangleBoxMeets(Box3f query, const SurfaceView& s) 
     return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
            a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
   };
-  if (!meets(query, s.tree.bounds)) return false;
-  uint32_t stack[KD_STACK_SIZE];
+  const MeshBvhNode* nodes = s.bvh.nodes;
+  if (!meets(query, nodes[0].box)) return false;
+  uint32_t stack[MESH_BVH_STACK];
   int top = 0;
   uint32_t node = 0;
   for (;;) {
-    KdNode n = s.tree.nodes[node];
-    while (!isLeaf(n)) {
-      int axis = splitAxis(n);
-      float split = splitPosition(n);
-      bool left = component(query.lo, axis) <= split, right = component(query.hi, axis) >= split;
-      if (left && right) stack[top++] = rightChild(n);
-      node = left ? leftChild(n) : rightChild(n);
-      n = s.tree.nodes[node];
-    }
-    for (uint32_t k = 0; k < leafCount(n); ++k) {
-      const uint32_t* i = s.mesh.indices + 3 * s.tree.leafTriangles[leafFirst(n) + k];
-      Box3f b =
-          merge(merge(Box3f{s.mesh.vertices[i[0]], s.mesh.vertices[i[0]]}, s.mesh.vertices[i[1]]),
-                s.mesh.vertices[i[2]]);
-      if (meets(query, b)) return true;
+    const MeshBvhNode& n = nodes[node];
+    if (n.count == 0) {  // both children's boxes are tested before descending
+      bool left = meets(query, nodes[n.first].box), right = meets(query, nodes[n.first + 1].box);
+      if (left && right) stack[top++] = n.first + 1;
+      if (left || right) {
+        node = left ? n.first : n.first + 1;
+        continue;
+      }
+    } else {
+      for (uint32_t k = 0; k < n.count; ++k) {
+        const uint32_t* i = s.mesh.indices + 3 * s.bvh.triangles[n.first + k];
+        Box3f b =
+            merge(merge(Box3f{s.mesh.vertices[i[0]], s.mesh.vertices[i[0]]}, s.mesh.vertices[i[1]]),
+                  s.mesh.vertices[i[2]]);
+        if (meets(query, b)) return true;
+      }
     }
     if (top == 0) return false;
     node = stack[--top];
