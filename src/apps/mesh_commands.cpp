@@ -113,8 +113,12 @@ int runKdTree(const std::string& path, const std::string& builders, int64_t repe
     }
   }
   if (gpuOnly || (all && haveGpu)) {
-    gpu = timeBuilds(mesh, repeat, buildKdTreeCuda, true);
+    KdBuildPhases phases;
+    gpu = timeBuilds(
+        mesh, repeat, [&](const Mesh& m) { return buildKdTreeCuda(m, &phases); }, true);
     printTree("gpu build (after a warm-up; upload and download included)", gpu, repeat);
+    std::printf("  the last build: upload and root %.1f ms, %d levels %.1f ms, download %.1f ms\n",
+                phases.rootMs, phases.levels, phases.levelsMs, phases.downloadMs);
     std::printf("  %.1fx the sequential build's speed\n", seq.ms / std::max(gpu.ms, 1e-6));
     std::string why;
     bool same = sameTree(seq.tree, gpu.tree, &why);

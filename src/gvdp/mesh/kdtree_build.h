@@ -34,10 +34,17 @@ KdTree buildKdTreeSequential(const Mesh& mesh);
 // makes with CUB. Nodes are stored level by level; the tree is sameTree as the sequential one.
 KdTree buildKdTreeParallel(const Mesh& mesh);
 
+// Where a GPU build's wall time went, read at its synchronisation points: the upload and the root
+// level, the levels, the download of the tree.
+struct KdBuildPhases {
+  double rootMs = 0.0, levelsMs = 0.0, downloadMs = 0.0;
+  int levels = 0;
+};
+
 // The same level-by-level builder on the GPU (kdtree_cuda.cu): each step one CUB call or one
 // element-wise kernel over device arrays, the rules the same GVDP_HD functions, nodes and leaf
 // triangles stored as buildKdTreeParallel stores them. Uploads the mesh, downloads the tree; on
 // its own stream, finished on return. Throws InputError in builds without CUDA.
-KdTree buildKdTreeCuda(const Mesh& mesh);
+KdTree buildKdTreeCuda(const Mesh& mesh, KdBuildPhases* phases = nullptr);
 
 }  // namespace gvdp::detail

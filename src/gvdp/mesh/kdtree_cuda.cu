@@ -19,6 +19,7 @@
 #include <thrust/iterator/transform_iterator.h>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
@@ -552,7 +553,12 @@ void rootLevel(const Mesh& mesh, DeviceLevel& l, Box3f& bounds, Cub& cub) {
 
 }  // namespace
 
-KdTree buildKdTreeCuda(const Mesh& mesh) {
+KdTree buildKdTreeCuda(const Mesh& mesh, KdBuildPhases* phases) {
+  auto start = std::chrono::steady_clock::now();
+  auto msSince = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
+  KdBuildPhases ph;
   OwnedGpuStream owned(createGpuStream());
   auto s = static_cast<cudaStream_t>(owned.get());
   Pool mem(s);
@@ -565,6 +571,7 @@ KdTree buildKdTreeCuda(const Mesh& mesh) {
   DeviceLevel cur, next;
   Scratch x;
   rootLevel(mesh, cur, tree.bounds, cub);
+  ph.rootMs = msSince(start);
   uint64_t nodeBase = 0, leafBase = 0;
   uint32_t* runs = x.runs.grow(mem, 1);
   uint32_t* totals = x.totals.grow(mem, 4);
@@ -664,6 +671,8 @@ KdTree buildKdTreeCuda(const Mesh& mesh) {
     GVDP_CHECK(nodeBase + m + 2 * splits <= KD_MAX_INDEX && leafBase + leafRefs <= KD_MAX_INDEX,
                "kd-tree past 2^30 nodes or leaf references");
     if (splits == 0) {
+      ph.levels = depth + 1;
+      ph.levelsMs = msSince(start) - ph.rootMs;
       tree.nodes.resize(nodeBase + m);
       tree.leafTriangles.resize(leafBase + leafRefs);
       readDevice(tree.nodes.data(), nodes, tree.nodes.size() * sizeof(KdNode), s);
@@ -698,6 +707,8 @@ KdTree buildKdTreeCuda(const Mesh& mesh) {
     leafBase += leafRefs;
   }
   GVDP_CUDA_CHECK(cudaStreamSynchronize(s));
+  ph.downloadMs = msSince(start) - ph.rootMs - ph.levelsMs;
+  if (phases) *phases = ph;
   return tree;
 }
 

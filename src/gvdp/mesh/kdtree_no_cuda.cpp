@@ -4,7 +4,7 @@
 
 namespace gvdp::detail {
 
-KdTree buildKdTreeCuda(const Mesh&) {
+KdTree buildKdTreeCuda(const Mesh&, KdBuildPhases*) {
   throw InputError("the GPU kd-tree builder is unavailable: this gvdp was built without CUDA");
 }
 
