@@ -28,7 +28,7 @@ constexpr float MESH_LATTICE_MIN = 1.5f;            // copies at least half a mo
 constexpr float MESH_LATTICE_MAX = 1000.0f;
 constexpr int MESH_BOX_CELLS = 16;          // emptyBox looks at most at this many copies
 constexpr double MESH_SLACK = 1e-4;         // covers the float distances of the flags
-constexpr float MESH_SURFEL_VOXELS = 0.5f;  // nodes this many voxels wide count as surfels
+constexpr float MESH_SURFEL_VOXELS = 1.0f;  // nodes this many voxels wide count as surfels
 constexpr float MESH_SPEED = 0.02f;         // world units per frame along the camera paths
 
 // A point of the world in the frame of the copy of lattice cell (cx, cz): the copy's model sits
