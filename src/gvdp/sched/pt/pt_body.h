@@ -308,7 +308,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
 // PT_BATCH items of the tiled screen, until no ray or task of the frame is left. The Worker
 // supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which with
-// nothing to take helps a production of its block before it idles):
+// nothing to take helps an open production, its block's first, before it idles):
 //   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
 //   void produce(uint32_t position)                         the task at a claimed position
