@@ -97,11 +97,8 @@ TEST(MeshNearest, DistanceAndSideEqualBruteForceAndTheSpheres) {
     Vec3f h = Vec3f{1.0f, 1.0f, 1.0f} * (0.002f + 0.1f * std::abs(u(rng)));
     Box3f query{c - h, c + h};
     bool brute = false;
-    for (size_t t = 0; t < m.triangleCount() && !brute; ++t) {
-      Box3f b = triangleBounds(m, t);
-      brute = query.lo.x <= b.hi.x && b.lo.x <= query.hi.x && query.lo.y <= b.hi.y &&
-              b.lo.y <= query.hi.y && query.lo.z <= b.hi.z && b.lo.z <= query.hi.z;
-    }
+    for (size_t t = 0; t < m.triangleCount() && !brute; ++t)
+      brute = boxesMeet(query, triangleBounds(m, t));
     EXPECT_EQ(anyTriangleBoxMeets(query, s), brute);
     met += brute;
   }

@@ -43,6 +43,14 @@ GVDP_HD GVDP_INLINE Box3f merge(Box3f b, Vec3f p) {
 GVDP_HD GVDP_INLINE Box3f merge(Box3f a, Box3f b) {
   return merge(merge(a, b.lo), b.hi);
 }
+GVDP_HD GVDP_INLINE Box3f triangleBox(Vec3f a, Vec3f b, Vec3f c) {
+  return merge(merge(merge(emptyBox(), a), b), c);
+}
+// Whether two closed boxes share a point.
+GVDP_HD GVDP_INLINE bool boxesMeet(Box3f a, Box3f b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
 
 // Half the surface area (the SAH needs only ratios): dx dy + dy dz + dz dx, in that order.
 GVDP_HD GVDP_INLINE float halfArea(Box3f b) {

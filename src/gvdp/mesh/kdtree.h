@@ -141,7 +141,7 @@ GVDP_HD GVDP_INLINE bool kdEventLess(KdEvent a, KdEvent b) {
 
 // A triangle's box, its bounds made canonical (every builder starts from these).
 GVDP_HD GVDP_INLINE Box3f kdTriangleBox(Vec3f a, Vec3f b, Vec3f c) {
-  Box3f box = merge(merge(merge(emptyBox(), a), b), c);
+  Box3f box = triangleBox(a, b, c);
   return {{canonicalZero(box.lo.x), canonicalZero(box.lo.y), canonicalZero(box.lo.z)},
           {canonicalZero(box.hi.x), canonicalZero(box.hi.y), canonicalZero(box.hi.z)}};
 }

@@ -217,19 +217,16 @@ GVDP_HD GVDP_INLINE bool insideByRay(Vec3f p, const SurfaceView& s) {
 
 // Whether the box of some triangle meets `query` (closed boxes).
 GVDP_HD GVDP_INLINE bool anyTriangleBoxMeets(Box3f query, const SurfaceView& s) {
-  auto meets = [](Box3f a, Box3f b) {
-    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
-           a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
-  };
   const MeshBvhNode* nodes = s.bvh.nodes;
-  if (!meets(query, nodes[0].box)) return false;
+  if (!boxesMeet(query, nodes[0].box)) return false;
   uint32_t stack[MESH_BVH_STACK];
   int top = 0;
   uint32_t node = 0;
   for (;;) {
     const MeshBvhNode& n = nodes[node];
     if (n.count == 0) {  // both children's boxes are tested before descending
-      bool left = meets(query, nodes[n.first].box), right = meets(query, nodes[n.first + 1].box);
+      bool left = boxesMeet(query, nodes[n.first].box);
+      bool right = boxesMeet(query, nodes[n.first + 1].box);
       if (left && right) stack[top++] = n.first + 1;
       if (left || right) {
         node = left ? n.first : n.first + 1;
@@ -238,10 +235,8 @@ GVDP_HD GVDP_INLINE bool anyTriangleBoxMeets(Box3f query, const SurfaceView& s) 
     } else {
       for (uint32_t k = 0; k < n.count; ++k) {
         const uint32_t* i = s.mesh.indices + 3 * s.bvh.triangles[n.first + k];
-        Box3f b =
-            merge(merge(Box3f{s.mesh.vertices[i[0]], s.mesh.vertices[i[0]]}, s.mesh.vertices[i[1]]),
-                  s.mesh.vertices[i[2]]);
-        if (meets(query, b)) return true;
+        Vec3f a = s.mesh.vertices[i[0]], b = s.mesh.vertices[i[1]], c = s.mesh.vertices[i[2]];
+        if (boxesMeet(query, triangleBox(a, b, c))) return true;
       }
     }
     if (top == 0) return false;
