@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <thread>
 
+#include "gvdp/base/parallel.h"
 #include "gvdp/bench/sequence.h"
 #include "gvdp/io/timeline_export.h"
+#include "gvdp/profile/frame_timeline.h"
 #include "gvdp/profile/timeline_cpu.h"
 #include "test_util.h"
 
@@ -104,6 +107,30 @@ TEST(Timeline, PictureShowsKindsInTheirColoursAndIdleInBlack) {
   EXPECT_EQ(at(0, 0.2), 0xff2828dcu);  // red: render
   EXPECT_EQ(at(1, 0.2), 0xff000000u);  // black: lane 1 idle before 500 ns
   EXPECT_EQ(at(1, 0.8), 0xffe65a32u);  // blue: production
+}
+
+// The thread pool is shared: a CPU timeline records the runs of the thread recording it, not
+// another thread's (two renderers on two threads), which would also push into it while its
+// capture ends (a data race ThreadSanitizer once found in CI, between the serve loop's timeline and
+// another test's renders).
+TEST(ThreadPool, ATimelineRecordsOnlyTheRunsOfItsOwnThread) {
+  std::atomic<bool> stop{false};
+  std::thread other([&] {
+    while (!stop)
+      parallelFor(
+          1000, [](int64_t) {}, 8, static_cast<uint8_t>(TaskKind::Sweep));
+  });
+  for (int k = 0; k < 20; ++k) {
+    std::unique_ptr<FrameTimeline> t = makeCpuFrameTimeline();
+    t->begin();
+    parallelFor(
+        1000, [](int64_t) {}, 8, static_cast<uint8_t>(TaskKind::Render));
+    TimelineCapture c = t->end();
+    EXPECT_FALSE(c.records.empty());
+    for (const TimelineRecord& r : c.records) EXPECT_EQ(r.kind, TaskKind::Render);
+  }
+  stop = true;
+  other.join();
 }
 
 TEST(Timeline, CpuRecordsAreWellFormedForSpAndDp) {

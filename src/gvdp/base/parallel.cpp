@@ -33,18 +33,20 @@ void ThreadPool::drain(int worker) {
 
 namespace {
 std::atomic<TaskObserver> observer{nullptr};
-}
+std::atomic<std::thread::id> observerThread{};
+}  // namespace
 
 void setTaskObserver(TaskObserver o) {
+  observerThread = std::this_thread::get_id();
   observer = o;
 }
 TaskObserver taskObserver() {
-  return observer;
+  return ThreadPool::global().runObserver();
 }
 
 // With an observer, a worker's share of a run (if it got any chunk) is reported as one task.
 void ThreadPool::drainRecorded(int worker) {
-  TaskObserver o = observer;
+  TaskObserver o = observer_;
   if (!o || kind_ == NO_RECORD) return drain(worker);
   uint64_t start = clockNanoseconds();
   int64_t before = next_.load();
@@ -85,6 +87,7 @@ void ThreadPool::run(int64_t n, int64_t chunk,
     n_ = n;
     chunk_ = std::max<int64_t>(chunk, 1);
     kind_ = kind;
+    observer_ = observerThread.load() == std::this_thread::get_id() ? observer.load() : nullptr;
     next_ = 0;
     ++generation_;
   }

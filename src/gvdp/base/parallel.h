@@ -25,12 +25,15 @@ class ThreadPool {
   // Runs body(begin, end, worker) over [0, n) in chunks of `chunk`; returns when all are done.
   // Calls from several threads take turns (body must not call run()).
   // worker is in [0, size()): 0 is the calling thread. `kind` labels the work in the timeline
-  // (profile/): while one is recorded, every worker leaves one record per run.
+  // (profile/): while the calling thread records one, every worker leaves one record per run.
   void run(int64_t n, int64_t chunk, const std::function<void(int64_t, int64_t, int)>& body,
            uint8_t kind = 0);
 
   // The process-wide pool, sized from GVDP_THREADS or the hardware concurrency.
   static ThreadPool& global();
+
+  // The task observer of the run in progress (inside a body), nullptr when it is not recorded.
+  auto runObserver() const { return observer_.load(); }
 
  private:
   void workerLoop(int worker);
@@ -44,6 +47,7 @@ class ThreadPool {
   const std::function<void(int64_t, int64_t, int)>* body_ = nullptr;
   int64_t n_ = 0, chunk_ = 1;
   uint8_t kind_ = 0;
+  std::atomic<void (*)(uint8_t, int, uint64_t, uint64_t)> observer_{nullptr};  // the run's
   std::atomic<int64_t> next_{0};
   int active_ = 0;
   uint64_t generation_ = 0;
@@ -51,10 +55,13 @@ class ThreadPool {
 };
 
 // Profiling hook (profile/ installs one): a worker ran tasks of `kind` from start to end (ns).
+// It observes the runs of the thread that installed it only: another thread's runs on the shared
+// pool (two renderers on two threads) are not recorded into its timeline, and cannot push into it
+// after that thread's run has returned.
 using TaskObserver = void (*)(uint8_t kind, int worker, uint64_t startNs, uint64_t endNs);
-void setTaskObserver(TaskObserver observer);  // nullptr: off
-TaskObserver taskObserver();
-constexpr uint8_t NO_RECORD = 255;  // a run whose tasks report themselves
+void setTaskObserver(TaskObserver observer);  // for the calling thread's runs; nullptr: off
+TaskObserver taskObserver();                  // inside a run's body: the run's observer, if any
+constexpr uint8_t NO_RECORD = 255;            // a run whose tasks report themselves
 
 // fn(i) for every i in [0, n) on the global pool; `kind` is a TaskKind (profile/timeline.h).
 template <class F>
