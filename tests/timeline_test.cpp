@@ -113,24 +113,33 @@ TEST(Timeline, PictureShowsKindsInTheirColoursAndIdleInBlack) {
 // another thread's (two renderers on two threads), which would also push into it while its
 // capture ends (a data race ThreadSanitizer once found in CI, between the serve loop's timeline and
 // another test's renders).
+// Two threads record two timelines on the shared pool at once (the viewer's render loop and a
+// renderer on another thread; CI's TSan found a worker pushing one thread's records into the
+// other's timeline while it was being read): each timeline holds its own thread's runs only.
 TEST(ThreadPool, ATimelineRecordsOnlyTheRunsOfItsOwnThread) {
+  auto recordRuns = [](TaskKind kind) {
+    for (int k = 0; k < 50; ++k) {
+      std::unique_ptr<FrameTimeline> t = makeCpuFrameTimeline();
+      t->begin();
+      for (int r = 0; r < 4; ++r)
+        parallelFor(
+            1000, [](int64_t) {}, 8, static_cast<uint8_t>(kind));
+      TimelineCapture c = t->end();
+      EXPECT_FALSE(c.records.empty());
+      for (const TimelineRecord& rec : c.records) EXPECT_EQ(rec.kind, kind);
+    }
+  };
   std::atomic<bool> stop{false};
-  std::thread other([&] {
+  std::thread unrecorded([&] {
     while (!stop)
       parallelFor(
-          1000, [](int64_t) {}, 8, static_cast<uint8_t>(TaskKind::Sweep));
+          1000, [](int64_t) {}, 8, static_cast<uint8_t>(TaskKind::Cache));
   });
-  for (int k = 0; k < 20; ++k) {
-    std::unique_ptr<FrameTimeline> t = makeCpuFrameTimeline();
-    t->begin();
-    parallelFor(
-        1000, [](int64_t) {}, 8, static_cast<uint8_t>(TaskKind::Render));
-    TimelineCapture c = t->end();
-    EXPECT_FALSE(c.records.empty());
-    for (const TimelineRecord& r : c.records) EXPECT_EQ(r.kind, TaskKind::Render);
-  }
-  stop = true;
+  std::thread other([&] { recordRuns(TaskKind::Sweep); });
+  recordRuns(TaskKind::Render);
   other.join();
+  stop = true;
+  unrecorded.join();
 }
 
 TEST(Timeline, CpuRecordsAreWellFormedForSpAndDp) {

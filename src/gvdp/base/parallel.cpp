@@ -23,22 +23,20 @@ ThreadPool::~ThreadPool() {
   for (auto& t : workers_) t.join();
 }
 
-void ThreadPool::drain(int worker) {
-  for (;;) {
+bool ThreadPool::drain(int worker) {
+  for (bool ran = false;; ran = true) {
     int64_t b = next_.fetch_add(chunk_);
-    if (b >= n_) return;
+    if (b >= n_) return ran;
     (*body_)(b, std::min(n_, b + chunk_), worker);
   }
 }
 
 namespace {
-std::atomic<TaskObserver> observer{nullptr};
-std::atomic<std::thread::id> observerThread{};
+thread_local TaskObserver callerObserver;
 }  // namespace
 
 void setTaskObserver(TaskObserver o) {
-  observerThread = std::this_thread::get_id();
-  observer = o;
+  callerObserver = o;
 }
 TaskObserver taskObserver() {
   return ThreadPool::global().runObserver();
@@ -47,11 +45,14 @@ TaskObserver taskObserver() {
 // With an observer, a worker's share of a run (if it got any chunk) is reported as one task.
 void ThreadPool::drainRecorded(int worker) {
   TaskObserver o = observer_;
-  if (!o || kind_ == NO_RECORD) return drain(worker);
+  if (!o || kind_ == NO_RECORD) {
+    drain(worker);
+    return;
+  }
+  // A worker that woke after its run returned finds no chunk (next_ still grows) and must not
+  // report: the run's timeline may be gone.
   uint64_t start = clockNanoseconds();
-  int64_t before = next_.load();
-  drain(worker);
-  if (next_.load() > before) o(kind_, worker, start, clockNanoseconds());
+  if (drain(worker)) o(kind_, worker, start, clockNanoseconds());
 }
 
 void ThreadPool::workerLoop(int worker) {
@@ -87,7 +88,7 @@ void ThreadPool::run(int64_t n, int64_t chunk,
     n_ = n;
     chunk_ = std::max<int64_t>(chunk, 1);
     kind_ = kind;
-    observer_ = observerThread.load() == std::this_thread::get_id() ? observer.load() : nullptr;
+    observer_ = callerObserver;
     next_ = 0;
     ++generation_;
   }

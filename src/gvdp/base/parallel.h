@@ -13,6 +13,21 @@
 
 namespace gvdp::detail {
 
+// Profiling hook (profile/ installs one): a worker ran tasks of `kind` from start to end (ns);
+// `report` files it into `sink` (a timeline). Each thread has its own: a run carries its caller's
+// to the workers, so two threads recording two timelines on the shared pool (two renderers) each
+// get only their own runs' records, all pushed before their run returns.
+struct TaskObserver {
+  void (*report)(void* sink, uint8_t kind, int worker, uint64_t startNs, uint64_t endNs) = nullptr;
+  void* sink = nullptr;
+  explicit operator bool() const { return report != nullptr; }
+  void operator()(uint8_t kind, int worker, uint64_t startNs, uint64_t endNs) const {
+    report(sink, kind, worker, startNs, endNs);
+  }
+};
+void setTaskObserver(TaskObserver observer);  // for the calling thread's runs; {}: off
+TaskObserver taskObserver();                  // inside a run's body: the run's observer, if any
+
 class ThreadPool {
  public:
   explicit ThreadPool(int threads);
@@ -32,12 +47,12 @@ class ThreadPool {
   // The process-wide pool, sized from GVDP_THREADS or the hardware concurrency.
   static ThreadPool& global();
 
-  // The task observer of the run in progress (inside a body), nullptr when it is not recorded.
-  auto runObserver() const { return observer_.load(); }
+  // The task observer of the run in progress (inside a body); empty when it is not recorded.
+  TaskObserver runObserver() const { return observer_; }
 
  private:
   void workerLoop(int worker);
-  void drain(int worker);
+  bool drain(int worker);  // whether it ran a chunk
   void drainRecorded(int worker);
 
   std::vector<std::thread> workers_;
@@ -47,21 +62,14 @@ class ThreadPool {
   const std::function<void(int64_t, int64_t, int)>* body_ = nullptr;
   int64_t n_ = 0, chunk_ = 1;
   uint8_t kind_ = 0;
-  std::atomic<void (*)(uint8_t, int, uint64_t, uint64_t)> observer_{nullptr};  // the run's
+  TaskObserver observer_;  // the run's: its caller's, set with the run under mutex_
   std::atomic<int64_t> next_{0};
   int active_ = 0;
   uint64_t generation_ = 0;
   bool stop_ = false;
 };
 
-// Profiling hook (profile/ installs one): a worker ran tasks of `kind` from start to end (ns).
-// It observes the runs of the thread that installed it only: another thread's runs on the shared
-// pool (two renderers on two threads) are not recorded into its timeline, and cannot push into it
-// after that thread's run has returned.
-using TaskObserver = void (*)(uint8_t kind, int worker, uint64_t startNs, uint64_t endNs);
-void setTaskObserver(TaskObserver observer);  // for the calling thread's runs; nullptr: off
-TaskObserver taskObserver();                  // inside a run's body: the run's observer, if any
-constexpr uint8_t NO_RECORD = 255;            // a run whose tasks report themselves
+constexpr uint8_t NO_RECORD = 255;  // a run whose tasks report themselves
 
 // fn(i) for every i in [0, n) on the global pool; `kind` is a TaskKind (profile/timeline.h).
 template <class F>

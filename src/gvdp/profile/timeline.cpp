@@ -1,5 +1,3 @@
-#include <atomic>
-
 #include "gvdp/base/parallel.h"
 #include "gvdp/profile/frame_timeline.h"
 #include "gvdp/profile/timeline_cpu.h"
@@ -13,18 +11,15 @@ const char* taskKindName(TaskKind k) {
 }
 
 namespace {
-std::atomic<CpuTimeline*> current{nullptr};
-
-void observe(uint8_t kind, int worker, uint64_t start, uint64_t end) {
-  if (CpuTimeline* t = current.load())
-    t->view().push({start, end, static_cast<uint16_t>(worker), static_cast<uint16_t>(worker),
-                    static_cast<TaskKind>(kind)});
+void observe(void* timeline, uint8_t kind, int worker, uint64_t start, uint64_t end) {
+  static_cast<CpuTimeline*>(timeline)->view().push({start, end, static_cast<uint16_t>(worker),
+                                                    static_cast<uint16_t>(worker),
+                                                    static_cast<TaskKind>(kind)});
 }
 }  // namespace
 
 void recordThreadPoolInto(CpuTimeline* timeline) {
-  current = timeline;
-  setTaskObserver(timeline ? observe : nullptr);
+  setTaskObserver(timeline ? TaskObserver{observe, timeline} : TaskObserver{});
 }
 
 }  // namespace gvdp::detail

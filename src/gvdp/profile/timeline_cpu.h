@@ -26,7 +26,7 @@ class CpuTimeline {
   uint32_t count_ = 0;
 };
 
-// Makes the thread pool record into `timeline` (nullptr: stop).
+// Makes the thread pool record the calling thread's runs into `timeline` (nullptr: stop).
 void recordThreadPoolInto(CpuTimeline* timeline);
 
 }  // namespace gvdp::detail
