@@ -38,17 +38,17 @@ GVDP_HD GVDP_INLINE VoxelSample produceBrickSample(const P& producer, const Bric
   return producer.voxel(brickSampleCentre(key, sample, producer.voxelSize0()), vs);
 }
 
-// The producer's emptiness bound for the box of the samples of the bricks from key.brick - below
-// to key.brick + above, widened by one voxel (the reach of the empty-flag contract,
-// world/producer.h). below = above = 0: true makes the brick EMPTY unevaluated.
+// The producer's emptiness bound for the box of the samples of the bricks key.brick + lo to
+// key.brick + hi (offsets, inclusive), widened by one voxel (the reach of the empty-flag
+// contract, world/producer.h). lo = hi = 0: true makes the brick EMPTY unevaluated.
 template <class P>
-GVDP_HD GVDP_INLINE bool boxBoundedEmpty(const P& producer, const BrickKey& key, Vec3i below,
-                                         Vec3i above) {
+GVDP_HD GVDP_INLINE bool boxBoundedEmpty(const P& producer, const BrickKey& key, Vec3i lo,
+                                         Vec3i hi) {
   double vs = ldexp(static_cast<double>(producer.voxelSize0()), key.level);
-  Vec3d lo = brickSampleCentre({key.brick - below, key.level}, 0, producer.voxelSize0());
-  Vec3d hi = brickSampleCentre({key.brick + above, key.level}, BRICK_SAMPLE_COUNT - 1,
-                               producer.voxelSize0());
-  return producer.emptyBox(lo - Vec3d{vs, vs, vs}, hi + Vec3d{vs, vs, vs}, static_cast<float>(vs));
+  Vec3d a = brickSampleCentre({key.brick + lo, key.level}, 0, producer.voxelSize0());
+  Vec3d b =
+      brickSampleCentre({key.brick + hi, key.level}, BRICK_SAMPLE_COUNT - 1, producer.voxelSize0());
+  return producer.emptyBox(a - Vec3d{vs, vs, vs}, b + Vec3d{vs, vs, vs}, static_cast<float>(vs));
 }
 
 template <class P>
@@ -67,19 +67,31 @@ GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces
   return c;
 }
 
+// The bound for the slab that face f adds to a box: the bricks of `outer` beyond `inner`'s reach
+// through f (the two boxes differ in that face only).
 template <class P>
-GVDP_HD GVDP_INLINE bool codesBoundedEmpty(const P& producer, const BrickKey& key,
-                                           const EmptyReachCodes& codes) {
-  EmptyReach r = emptyReach(emptyEntry(codes));
-  return boxBoundedEmpty(producer, key, r.below, r.above);
+GVDP_HD GVDP_INLINE bool slabBoundedEmpty(const P& producer, const BrickKey& key,
+                                          const EmptyReachCodes& inner,
+                                          const EmptyReachCodes& outer, int face) {
+  EmptyReach in = emptyReach(emptyEntry(inner)), out = emptyReach(emptyEntry(outer));
+  Vec3i lo{-out.below.x, -out.below.y, -out.below.z}, hi = out.above;
+  auto at = [](Vec3i& v, int axis) -> int& { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
+  int axis = face % FACE_ABOVE;
+  if (face < FACE_ABOVE)
+    at(hi, axis) = -at(in.below, axis) - 1;
+  else
+    at(lo, axis) = at(in.above, axis) + 1;
+  return boxBoundedEmpty(producer, key, lo, hi);
 }
 
 // The EMPTY entry of an empty brick (brick_key.h: emptyEntry), by every member of the group: its
-// box grown in rounds. In a round each face still growing tries its next reach (member f tests
-// face f) and the faces the producer's bound clears grow together if it clears their combined
-// box too, else the first of them alone; a face stops at its first refusal. The box stretches
-// along the empty directions: up and sideways above a terrain, along a cave. A round costs the
-// group two bound evaluations, whatever its size.
+// box grown in rounds from the brick (empty by its samples' flags or by the bound). In a round
+// each face still growing tries its next reach (member f tests face f: the slab it adds) and the
+// faces the producer's bound clears grow together if the slabs they add to the box grown in all
+// of them clear too (member f again), else the first of them alone; a face stops at its first
+// refusal. Testing only what a step adds keeps the bound's boxes small (a bound from the centre
+// of a box loosens with its diagonal), so the box stretches along the empty directions: up and
+// sideways above a terrain, along a cave. A round costs each member two bound evaluations.
 template <class Scope, class P>
 GVDP_HD GVDP_INLINE uint32_t emptyEntryOf(const Scope& group, const P& producer,
                                           const BrickKey& key) {
@@ -88,15 +100,21 @@ GVDP_HD GVDP_INLINE uint32_t emptyEntryOf(const Scope& group, const P& producer,
   while (growing != 0u) {
     uint32_t cleared = 0u;
     for (int f = group.rank(); f < 6; f += group.size())
-      if ((growing >> f & 1u) && codesBoundedEmpty(producer, key, grownCodes(codes, 1u << f)))
+      if ((growing >> f & 1u) &&
+          slabBoundedEmpty(producer, key, codes, grownCodes(codes, 1u << f), f))
         cleared |= 1u << f;
     cleared = group.any(cleared);
     uint32_t take = cleared;
     if ((cleared & (cleared - 1u)) != 0u) {  // more than one face: all of them, or the first
-      uint32_t together = 0u;
-      if (group.rank() == 0)
-        together = codesBoundedEmpty(producer, key, grownCodes(codes, cleared));
-      if (group.broadcast(together) == 0u) take = cleared & (~cleared + 1u);
+      EmptyReachCodes all = grownCodes(codes, cleared);
+      uint32_t refused = 0u;
+      for (int f = group.rank(); f < 6; f += group.size()) {
+        EmptyReachCodes without = all;
+        without.face[f] = codes.face[f];
+        if ((cleared >> f & 1u) && !slabBoundedEmpty(producer, key, without, all, f))
+          refused |= 1u << f;
+      }
+      if (group.any(refused) != 0u) take = cleared & (~cleared + 1u);
     }
     codes = grownCodes(codes, take);
     growing = 0u;
