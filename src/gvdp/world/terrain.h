@@ -32,18 +32,29 @@ constexpr float PERLIN_WAVE0 = 32.0f, PERLIN_WAVE1 = 9.0f, PERLIN_AMP1 = 0.4f;
 constexpr float PERLIN_LIPSCHITZ = 1.0f / PERLIN_HEIGHT + NOISE_LIPSCHITZ / PERLIN_WAVE0 +
                                    PERLIN_AMP1 * NOISE_LIPSCHITZ / PERLIN_WAVE1;
 // The height gradient is linear: only the noise layers bend the density.
-constexpr float PERLIN_HESSIAN = NOISE_HESSIAN / (PERLIN_WAVE0 * PERLIN_WAVE0) +
-                                 PERLIN_AMP1 * NOISE_HESSIAN / (PERLIN_WAVE1 * PERLIN_WAVE1);
+constexpr float PERLIN_BASE_LIPSCHITZ = 1.0f / PERLIN_HEIGHT + NOISE_LIPSCHITZ / PERLIN_WAVE0;
+constexpr float PERLIN_BASE_HESSIAN = NOISE_HESSIAN / (PERLIN_WAVE0 * PERLIN_WAVE0);
+constexpr float PERLIN_HESSIAN =
+    PERLIN_BASE_HESSIAN + PERLIN_AMP1 * NOISE_HESSIAN / (PERLIN_WAVE1 * PERLIN_WAVE1);
 
-GVDP_HD GVDP_INLINE DensitySample perlinDensity(Vec3d p, uint32_t seed) {
+// perlin's density in two parts: the height term with the first noise layer (base), and the
+// second layer (detail).
+struct PerlinLayers {
+  DensitySample base, detail;
+};
+
+GVDP_HD GVDP_INLINE PerlinLayers perlinLayers(Vec3d p, uint32_t seed) {
   NoiseSample n0 = gradientNoise(scaled(p, 1.0 / PERLIN_WAVE0), seed);
   NoiseSample n1 = gradientNoise(scaled(p, 1.0 / PERLIN_WAVE1), seed + 1);
   float y = static_cast<float>(p.y);
-  DensitySample s;
-  s.d = -y / PERLIN_HEIGHT + n0.value + PERLIN_AMP1 * n1.value;
-  s.grad = Vec3f{0.0f, -1.0f / PERLIN_HEIGHT, 0.0f} + n0.grad * (1.0f / PERLIN_WAVE0) +
-           n1.grad * (PERLIN_AMP1 / PERLIN_WAVE1);
-  return s;
+  return {{-y / PERLIN_HEIGHT + n0.value,
+           Vec3f{0.0f, -1.0f / PERLIN_HEIGHT, 0.0f} + n0.grad * (1.0f / PERLIN_WAVE0)},
+          {PERLIN_AMP1 * n1.value, n1.grad * (PERLIN_AMP1 / PERLIN_WAVE1)}};
+}
+
+GVDP_HD GVDP_INLINE DensitySample perlinDensity(Vec3d p, uint32_t seed) {
+  PerlinLayers l = perlinLayers(p, seed);
+  return {l.base.d + l.detail.d, l.base.grad + l.detail.grad};
 }
 
 GVDP_HD GVDP_INLINE Vec3f rockAlbedo(float y, Vec3f normal) {
@@ -89,16 +100,22 @@ GVDP_HD GVDP_INLINE float densityBoundWithin(const DensitySample& s, float r, fl
   return s.d + fminf(lipschitz * r, (length(s.grad) + 0.5f * hessian * r) * r);
 }
 
-// producePerlin flags a voxel empty when -d >= 3 v Lip. Two upper bounds of d over the box, the
-// smaller kept: the centre's (densityBoundWithin; tight near the surface) and the height one, d <=
+// producePerlin flags a voxel empty when -d >= 3 v Lip. Three upper bounds of d over the box, the
+// smallest kept: the centre's (densityBoundWithin; tight near the surface), the same for the
+// height and first layer with the second layer's amplitude added, and the height one, d <=
 // -y / H plus the noise layers' largest values (above the terrain, where the first is loose at
 // coarse levels: one lookup then skips a sky ray over a whole level).
 GVDP_HD GVDP_INLINE bool perlinEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
   BoxCentre b = boxCentre(lo, hi);
   float dHeight = -static_cast<float>(lo.y) / PERLIN_HEIGHT + (1.0f + PERLIN_AMP1) * NOISE_MAX_ABS;
-  float dMax = fminf(densityBoundWithin(perlinDensity(b.centre, seed), b.halfDiagonal,
-                                        PERLIN_LIPSCHITZ, PERLIN_HESSIAN),
-                     dHeight);
+  PerlinLayers l = perlinLayers(b.centre, seed);
+  DensitySample whole{l.base.d + l.detail.d, l.base.grad + l.detail.grad};
+  float dWhole = densityBoundWithin(whole, b.halfDiagonal, PERLIN_LIPSCHITZ, PERLIN_HESSIAN);
+  // In a box wider than the second layer's wavelength, its amplitude bounds it better.
+  float dBase =
+      densityBoundWithin(l.base, b.halfDiagonal, PERLIN_BASE_LIPSCHITZ, PERLIN_BASE_HESSIAN) +
+      PERLIN_AMP1 * NOISE_MAX_ABS;
+  float dMax = fminf(fminf(dWhole, dBase), dHeight);
   return -dMax >= PERLIN_LIPSCHITZ * EMPTY_MARGIN_VOXELS * voxelSize + DENSITY_SLACK;
 }
 
@@ -162,13 +179,27 @@ GVDP_HD GVDP_INLINE VoxelSample produceFbm(Vec3d p, float voxelSize, uint32_t se
   return makeVoxel(albedo, normal, alpha, empty);
 }
 
+// The octaves a box bound over radius r evaluates: octave o varies by at most its slope times r
+// (the same NOISE_LIPSCHITZ / WAVE0 for every octave) and by at most its amplitude 2^-o
+// NOISE_MAX_ABS, whichever is smaller: the first octaves are evaluated, the others bounded by
+// their amplitudes unevaluated (sharper and cheaper for a box much wider than their wavelength).
+GVDP_HD GVDP_INLINE int fbmBoundOctaves(float r, int octaves) {
+  int k = 0;
+  while (k < octaves &&
+         NOISE_LIPSCHITZ / FBM_WAVE0 * r < NOISE_MAX_ABS / static_cast<float>(1 << k))
+    ++k;
+  return k;
+}
+
 // produceFbm flags a voxel empty when d <= -1.5 reach, d over the octaves of the voxel size.
 GVDP_HD GVDP_INLINE bool fbmEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
   BoxCentre b = boxCentre(lo, hi);
   int octaves = fbmOctaves(voxelSize);
   float reach = fbmEmptyReach(voxelSize, octaves);
-  float dMax = densityBoundWithin(fbmDensity(b.centre, octaves, seed), b.halfDiagonal,
-                                  fbmLipschitz(octaves), fbmHessian(octaves));
+  int k = fbmBoundOctaves(b.halfDiagonal, octaves);
+  float dMax = densityBoundWithin(fbmDensity(b.centre, k, seed), b.halfDiagonal, fbmLipschitz(k),
+                                  fbmHessian(k)) +
+               (fbmRemainder(k) - fbmRemainder(octaves));
   // The height bound as perlin's: the octaves summed add at most their amplitudes.
   float dHeight =
       -static_cast<float>(lo.y) / FBM_HEIGHT + 2.0f * NOISE_MAX_ABS - fbmRemainder(octaves);
