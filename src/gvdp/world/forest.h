@@ -44,11 +44,10 @@ GVDP_HD GVDP_INLINE Tree treeOfCell(int cx, int cz, uint32_t seed) {
   return t;
 }
 
-// The ground's height under p, and its normal there unless normal is null.
 GVDP_HD GVDP_INLINE float groundHeight(Vec3d p, uint32_t seed, Vec3f* normal) {
   NoiseSample n = gradientNoise({p.x / GROUND_WAVE, 0.37, p.z / GROUND_WAVE}, seed + 7);
   float k = GROUND_AMPLITUDE / GROUND_WAVE;
-  if (normal) *normal = normalize(Vec3f{-n.grad.x * k, 1.0f, -n.grad.z * k});
+  *normal = normalize(Vec3f{-n.grad.x * k, 1.0f, -n.grad.z * k});
   return GROUND_AMPLITUDE * n.value;
 }
 
@@ -100,54 +99,55 @@ GVDP_HD GVDP_INLINE LeafHit nearestLeaf(Vec3d p) {
   return best;
 }
 
-// The distance lower bounds of a point q (relative to its cell's corner) against the cell's tree
-// and the other cells' trees. Each is 1-Lipschitz in q over all space, q in the cell or not (the
-// crown's ellipsoid scaled by its smallest radius, the others' a max of planes), as is the
-// ground's (by GROUND_LIPSCHITZ): forestEmptyBox relies on it.
-struct TreeDistances {
-  float trunk, crown, others;
-  Vec3f crownQ;
+// The distance lower bounds of a point against the tree of one cell (corner cellX, cellZ in
+// cells), the ground, and the other cells' trees. Each is 1-Lipschitz in p over all space, the
+// point in the cell or not (the ground's by GROUND_LIPSCHITZ, the crown's ellipsoid scaled by
+// its smallest radius, the others' a max of planes): forestEmptyBox relies on it.
+struct ForestDistances {
+  Tree tree;
+  Vec3f q;  // p relative to the cell's corner
+  Vec3f groundNormal, crownQ;
+  float groundLB, trunk, crown, others;
+
+  GVDP_HD float nearest() const { return fminf(fminf(groundLB, trunk), fminf(crown, others)); }
 };
 
-GVDP_HD GVDP_INLINE TreeDistances treeDistances(const Tree& tree, Vec3f q) {
-  TreeDistances d{1e30f, 1e30f, 0.0f, {0, 1, 0}};
+GVDP_HD GVDP_INLINE ForestDistances forestDistances(Vec3d p, double cellX, double cellZ,
+                                                    uint32_t seed) {
+  ForestDistances f;
+  f.tree = treeOfCell(static_cast<int>(static_cast<long long>(cellX)),
+                      static_cast<int>(static_cast<long long>(cellZ)), seed);
+  const Tree& tree = f.tree;
+  Vec3f q{static_cast<float>(p.x - cellX * TREE_CELL), static_cast<float>(p.y),
+          static_cast<float>(p.z - cellZ * TREE_CELL)};
+  f.q = q;
   // Other cells' trees stay 1 unit inside their cells and within a band of heights.
   float toBorder = fminf(fminf(q.x, TREE_CELL - q.x), fminf(q.z, TREE_CELL - q.z)) + 1.0f;
-  d.others = fmaxf(toBorder, fmaxf(q.y - TREE_TOP, TREE_BOTTOM - q.y));
+  f.others = fmaxf(toBorder, fmaxf(q.y - TREE_TOP, TREE_BOTTOM - q.y));
+  float gy = groundHeight(p, seed, &f.groundNormal);
+  f.groundLB = (q.y - gy) / GROUND_LIPSCHITZ;
+  f.trunk = 1e30f;
+  f.crown = 1e30f;
+  f.crownQ = {0, 1, 0};
   if (tree.exists) {
     Vec3f t = q - tree.base;
     float radial = sqrtf(t.x * t.x + t.z * t.z) - tree.trunkRadius;
     float vertical = fmaxf(-3.0f - t.y, t.y - tree.trunkTop);
     float rx = fmaxf(radial, 0.0f), vx = fmaxf(vertical, 0.0f);
-    d.trunk = sqrtf(rx * rx + vx * vx) + fminf(fmaxf(radial, vertical), 0.0f);
-    d.crownQ = (q - tree.crownCentre) *
+    f.trunk = sqrtf(rx * rx + vx * vx) + fminf(fmaxf(radial, vertical), 0.0f);
+    f.crownQ = (q - tree.crownCentre) *
                Vec3f{1.0f / tree.crownRadii.x, 1.0f / tree.crownRadii.y, 1.0f / tree.crownRadii.z};
-    d.crown = (length(d.crownQ) - 1.0f) * minComponent(tree.crownRadii);
+    f.crown = (length(f.crownQ) - 1.0f) * minComponent(tree.crownRadii);
   }
-  return d;
-}
-
-GVDP_HD GVDP_INLINE Tree treeOfCell(double cellX, double cellZ, uint32_t seed) {
-  return treeOfCell(static_cast<int>(static_cast<long long>(cellX)),
-                    static_cast<int>(static_cast<long long>(cellZ)), seed);
-}
-
-GVDP_HD GVDP_INLINE Vec3f inCell(Vec3d p, double cellX, double cellZ) {
-  return {static_cast<float>(p.x - cellX * TREE_CELL), static_cast<float>(p.y),
-          static_cast<float>(p.z - cellZ * TREE_CELL)};
+  return f;
 }
 
 GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t seed) {
-  double cellX = floor(p.x / TREE_CELL), cellZ = floor(p.z / TREE_CELL);
-  Tree tree = treeOfCell(cellX, cellZ, seed);
-  Vec3f q = inCell(p, cellX, cellZ);
-  Vec3f groundNormal;
-  float gy = groundHeight(p, seed, &groundNormal);
-  float groundLB = (q.y - gy) / GROUND_LIPSCHITZ;
-  TreeDistances td = treeDistances(tree, q);
-  float trunk = td.trunk, crown = td.crown;
-  Vec3f crownQ = td.crownQ;
-  float nearest = fminf(fminf(groundLB, trunk), fminf(crown, td.others));
+  ForestDistances f = forestDistances(p, floor(p.x / TREE_CELL), floor(p.z / TREE_CELL), seed);
+  const Tree& tree = f.tree;
+  Vec3f q = f.q, groundNormal = f.groundNormal, crownQ = f.crownQ;
+  float groundLB = f.groundLB, trunk = f.trunk, crown = f.crown;
+  float nearest = f.nearest();
   bool empty = nearest >= EMPTY_MARGIN_VOXELS * voxelSize;
 
   // Solid part: ground or trunk.
@@ -193,7 +193,7 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
 //   radius >= 0.6 (y - TREE_TOP);
 // - or, for each tree cell it overlaps (at most FOREST_BOX_CELLS), the cell's nearest bound at
 //   the box's centre exceeds the margin by half the box's diagonal (1-Lipschitz,
-//   treeDistances), as does the ground's: the air between trunks and crowns.
+//   forestDistances): the air between trunks and crowns.
 // 1e-3 covers float rounding.
 constexpr int FOREST_BOX_CELLS = 4;
 
@@ -210,13 +210,9 @@ GVDP_HD GVDP_INLINE bool forestEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uin
   Vec3d c{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
   double dx = hi.x - lo.x, dy = hi.y - lo.y, dz = hi.z - lo.z;
   float r = static_cast<float>(0.5 * sqrt(dx * dx + dy * dy + dz * dz));
-  float ground = (static_cast<float>(c.y) - groundHeight(c, seed, nullptr)) / GROUND_LIPSCHITZ;
-  if (ground - r < margin) return false;
   for (double cx = x0; cx <= x1; cx += 1.0)
-    for (double cz = z0; cz <= z1; cz += 1.0) {
-      TreeDistances d = treeDistances(treeOfCell(cx, cz, seed), inCell(c, cx, cz));
-      if (fminf(fminf(d.trunk, d.crown), d.others) - r < margin) return false;
-    }
+    for (double cz = z0; cz <= z1; cz += 1.0)
+      if (forestDistances(c, cx, cz, seed).nearest() - r < margin) return false;
   return true;
 }
 

@@ -317,7 +317,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
 //   void renderFresh(uint32_t first)                        items first .. first + PT_BATCH - 1
 //   void idle(), finish()                                   nothing to take; the loop is over
 template <class Worker>
-GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
+GVDP_HD void ptWorkerLoop(const PtContext& ctx, Worker& w) {
   while (w.liveWork() != 0) {
     uint32_t position = 0;
     if (w.claim(ctx.tasks, 1, &position)) {

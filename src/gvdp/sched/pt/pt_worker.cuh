@@ -276,10 +276,7 @@ struct WarpWorker {
   __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
     return warpClaim(r, n, position, lane);
   }
-  // Inlined, as is the loop calling it: built with relocatable device code, a function left out
-  // of line does not get the kernel's register bound (__launch_bounds__), and ptxas refuses the
-  // call (the production with every world's empty-box bound inlined grew past the inliner's size).
-  __device__ __forceinline__ void produce(uint32_t position) {
+  __device__ void produce(uint32_t position) {
     span.begin(TaskKind::Produce);
     uint32_t id = 0;
     if (lane == 0) id = ringTake(ctx.tasks, position);
