@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -118,8 +119,10 @@ TEST(Timeline, PictureShowsKindsInTheirColoursAndIdleInBlack) {
 // other's timeline while it was being read): each timeline holds its own thread's runs only.
 TEST(ThreadPool, ATimelineRecordsOnlyTheRunsOfItsOwnThread) {
   auto recordRuns = [](TaskKind kind) {
+    // One timeline per thread, as a renderer keeps one (a fresh one per frame is a large
+    // allocation, which took ThreadSanitizer seconds each).
+    std::unique_ptr<FrameTimeline> t = makeCpuFrameTimeline();
     for (int k = 0; k < 50; ++k) {
-      std::unique_ptr<FrameTimeline> t = makeCpuFrameTimeline();
       t->begin();
       for (int r = 0; r < 4; ++r)
         parallelFor(
@@ -131,9 +134,11 @@ TEST(ThreadPool, ATimelineRecordsOnlyTheRunsOfItsOwnThread) {
   };
   std::atomic<bool> stop{false};
   std::thread unrecorded([&] {
-    while (!stop)
+    while (!stop) {
       parallelFor(
           1000, [](int64_t) {}, 8, static_cast<uint8_t>(TaskKind::Cache));
+      std::this_thread::sleep_for(std::chrono::microseconds(200));  // leaves the others turns
+    }
   });
   std::thread other([&] { recordRuns(TaskKind::Sweep); });
   recordRuns(TaskKind::Render);
