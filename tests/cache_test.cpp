@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstring>
 #include <map>
 #include <random>
 #include <set>
@@ -326,6 +328,84 @@ TEST(Cache, OccupancyCellsAreExact) {
   EXPECT_GT(bricks, 5) << "no resident brick near the surface";
   EXPECT_GT(clear, 0);
   EXPECT_GT(set, 0);
+}
+
+// The cells between two positions hold the cell of every position on the segment between them
+// (what lets the march leave a brick whose samples ahead all lie in clear cells), and are the box
+// of cells between the two ends.
+TEST(Cache, OccupancyCellsBetweenHoldTheSegment) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-0.25f, 8.25f);
+  for (int k = 0; k < 20000; ++k) {
+    Vec3f a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)};
+    uint64_t between = occupancyCellsBetween(a, b);
+    ASSERT_EQ(between, occupancyCellsBetween(b, a));
+    ASSERT_EQ(between & occupancyBit(a), occupancyBit(a));
+    ASSERT_EQ(between & occupancyBit(b), occupancyBit(b));
+    uint64_t swept = 0;
+    for (int i = 0; i <= 64; ++i) swept |= occupancyBit(a + (b - a) * (static_cast<float>(i) / 64));
+    ASSERT_EQ(between & swept, swept) << k;
+    int span = 1;
+    for (int axis = 0; axis < 3; ++axis) {
+      float p = axis == 0   ? a.x
+                : axis == 1 ? a.y
+                            : a.z,
+            q = axis == 0   ? b.x
+                : axis == 1 ? b.y
+                            : b.z;
+      span *= std::abs(occupancyCell(p) - occupancyCell(q)) + 1;
+    }
+    ASSERT_EQ(std::popcount(between), span) << k;
+  }
+}
+
+namespace {
+
+// CachedAccess as if every cell of every resident brick were occupied: the march then reads every
+// sample (no clear cell, no clear brick left early).
+struct EveryCellOccupied : CachedAccess<BrickPool> {
+  BrickLookup lookup(int level, Vec3i brick) {
+    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
+    b.occupancy = ~uint64_t{0};
+    return b;
+  }
+};
+
+}  // namespace
+
+// Leaving clear cells and clear bricks early changes no pixel, bit for bit, and saves most of the
+// sample steps near perlin's ground.
+TEST(Cache, ClearCellsAndBricksAreSkippedWithoutChangingAPixel) {
+  BrickCacheCpu cache(30000);
+  FrameSetup f = frameAt(findScene("perlin").start.position, 0);
+  cache.beginFrame(f);
+  CacheView v = cache.view();
+  BrickPool pool = cache.pool();
+  uint64_t samples = 0, allSamples = 0;
+  int covered = 0;
+  for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
+    Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
+    RayState filling = initialRayState();
+    for (;;) {  // produce what the ray asks for until it finishes
+      CachedAccess<BrickPool> access{v, pool, f.lod};
+      if (march(ray, f.lod, filling, access) == MarchResult::Finished) break;
+      for (uint32_t r = 0; r < v.counters[COUNTER_REQUESTS]; ++r)
+        produce(cache, v, cache.requests()[r]);
+      cache.clearRequests();
+    }
+    RayState s = initialRayState(), all = initialRayState();
+    CachedAccess<BrickPool> access{v, pool, f.lod};
+    EveryCellOccupied every{{v, pool, f.lod}};
+    ASSERT_EQ(march(ray, f.lod, s, access), MarchResult::Finished) << pixel;
+    ASSERT_EQ(march(ray, f.lod, all, every), MarchResult::Finished) << pixel;
+    ASSERT_EQ(std::memcmp(&s.colour, &all.colour, sizeof(Vec4f)), 0) << pixel;
+    ASSERT_EQ(std::memcmp(&s.colour, &filling.colour, sizeof(Vec4f)), 0) << pixel;
+    samples += access.samples;
+    allSamples += every.samples;
+    covered += s.colour.w > 0.5f ? 1 : 0;
+  }
+  EXPECT_GT(covered, f.width * f.height / 4) << "the view must hold ground";
+  EXPECT_LT(samples * 2, allSamples) << samples << " sample steps against " << allSamples;
 }
 
 }  // namespace gvdp::detail

@@ -223,10 +223,8 @@ struct CachedAccess {
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
     ++samples;
     Vec3f v = p / lod.voxelSize(b.level);
+    if (!(b.occupancy & occupancyBit(voxelInBrick(v, b.brick)))) return {0.0f, 0.0f, 0.0f, 0.0f};
     Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
-    Vec3f local{v.x - static_cast<float>(origin.x), v.y - static_cast<float>(origin.y),
-                v.z - static_cast<float>(origin.z)};
-    if (!(b.occupancy & occupancyBit(local))) return {0.0f, 0.0f, 0.0f, 0.0f};
     return pool.template sample<READS>(b.slot, origin, v);
   }
 };

@@ -20,32 +20,54 @@ namespace gvdp::detail {
 // exactly, so the march need not read the brick there (cache/cached_access.h).
 constexpr int OCCUPANCY_CELLS = 4;  // per axis
 
-// The cell of a position v in voxel units from the brick's origin, clamped: a position on a
-// face (v = 0 or 8, within rounding) reads samples of the cell it is clamped to.
-GVDP_HD GVDP_INLINE uint64_t occupancyBit(Vec3f v) {
-  auto cell = [](float a) {
-    int c = static_cast<int>(floorf(a * 0.5f));
-    return c < 0 ? 0 : c > OCCUPANCY_CELLS - 1 ? OCCUPANCY_CELLS - 1 : c;
-  };
-  return uint64_t{1} << (cell(v.x) + OCCUPANCY_CELLS * (cell(v.y) + OCCUPANCY_CELLS * cell(v.z)));
+// The cell, along one axis, of a position a in voxel units from the brick's origin, clamped: a
+// position on a face (a = 0 or 8, within rounding) reads samples of the cell it is clamped to.
+GVDP_HD GVDP_INLINE int occupancyCell(float a) {
+  int c = static_cast<int>(floorf(a * 0.5f));
+  return c < 0 ? 0 : c > OCCUPANCY_CELLS - 1 ? OCCUPANCY_CELLS - 1 : c;
 }
 
-// The cells whose reads include sample (x, y, z) (indices 0..9 of the 10^3 with the border):
-// along an axis, cells max(0, (i - 2) / 2) to min(3, i / 2), a 4-bit mask; the 64 bits are the
-// outer product of the three masks (x in a row of 4 bits, y rows 4 bits apart, z planes 16
-// apart): two products, since the spread fields never overlap. No branch: production ORs this
-// for every nonzero sample, lanes of a warp at different indices.
-GVDP_HD GVDP_INLINE uint32_t occupancyAxisCells(int i) {
-  int lo = i < 2 ? 0 : (i - 2) >> 1;
-  int hi = i > 7 ? OCCUPANCY_CELLS - 1 : i >> 1;
-  return (2u << hi) - (1u << lo);  // bits lo..hi
+// Cells lo..hi along one axis, as a 4-bit mask.
+GVDP_HD GVDP_INLINE uint32_t occupancyAxisRange(int lo, int hi) {
+  return (2u << hi) - (1u << lo);
 }
-GVDP_HD GVDP_INLINE uint64_t occupancyCellsOf(Vec3i i) {
-  uint32_t y = occupancyAxisCells(i.y), z = occupancyAxisCells(i.z);
+
+// The cells of a box, from a 4-bit mask per axis: the outer product of the three (x in a row of
+// 4 bits, y rows 4 bits apart, z planes 16 apart), two products, since the spread fields never
+// overlap.
+GVDP_HD GVDP_INLINE uint64_t occupancyBox(uint32_t x, uint32_t y, uint32_t z) {
   uint32_t ySpread = (y & 1u) | (y & 2u) << 3 | (y & 4u) << 6 | (y & 8u) << 9;
   uint64_t zSpread =
       uint64_t{z & 1u} | uint64_t{z & 2u} << 15 | uint64_t{z & 4u} << 30 | uint64_t{z & 8u} << 45;
-  return uint64_t{occupancyAxisCells(i.x) * ySpread} * zSpread;
+  return uint64_t{x * ySpread} * zSpread;
+}
+
+// The cell of a position v in voxel units from the brick's origin.
+GVDP_HD GVDP_INLINE uint64_t occupancyBit(Vec3f v) {
+  return uint64_t{1} << (occupancyCell(v.x) +
+                         OCCUPANCY_CELLS *
+                             (occupancyCell(v.y) + OCCUPANCY_CELLS * occupancyCell(v.z)));
+}
+
+// The cells of the box from the cell of a to the cell of b (positions as for occupancyBit): it
+// holds the cell of every position on the segment between them, the cell being monotone in each
+// coordinate.
+GVDP_HD GVDP_INLINE uint64_t occupancyCellsBetween(Vec3f a, Vec3f b) {
+  auto axis = [](float p, float q) {
+    int cp = occupancyCell(p), cq = occupancyCell(q);
+    return cp < cq ? occupancyAxisRange(cp, cq) : occupancyAxisRange(cq, cp);
+  };
+  return occupancyBox(axis(a.x, b.x), axis(a.y, b.y), axis(a.z, b.z));
+}
+
+// The cells whose reads include sample (x, y, z) (indices 0..9 of the 10^3 with the border):
+// along an axis, cells max(0, (i - 2) / 2) to min(3, i / 2). No branch: production ORs this for
+// every nonzero sample, lanes of a warp at different indices.
+GVDP_HD GVDP_INLINE uint32_t occupancyAxisCells(int i) {
+  return occupancyAxisRange(i < 2 ? 0 : (i - 2) >> 1, i > 7 ? OCCUPANCY_CELLS - 1 : i >> 1);
+}
+GVDP_HD GVDP_INLINE uint64_t occupancyCellsOf(Vec3i i) {
+  return occupancyBox(occupancyAxisCells(i.x), occupancyAxisCells(i.y), occupancyAxisCells(i.z));
 }
 
 // How a kernel may read the pool (and the entries that lead to it, cache/cached_access.h).

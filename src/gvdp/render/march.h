@@ -6,6 +6,7 @@
 #pragma once
 
 #include "gvdp/base/ray.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/render/empty_box.h"
 #include "gvdp/render/lod.h"
 #include "gvdp/render/trilinear.h"
@@ -71,6 +72,24 @@ GVDP_HD GVDP_INLINE int exitFaceAlong(int axis, int brick, float d, uint32_t emp
                    : brick - emptyReachThrough(emptyCodes, axis);
 }
 
+// Distance at which the ray leaves the box around `brick` that `emptyCodes` names (0: the brick
+// alone), bricks `side` wide.
+GVDP_HD GVDP_INLINE float boxExit(const Ray& ray, Vec3f invD, Vec3i brick, uint32_t emptyCodes,
+                                  float side) {
+  Vec3f exit{static_cast<float>(exitFaceAlong(0, brick.x, ray.d.x, emptyCodes)) * side,
+             static_cast<float>(exitFaceAlong(1, brick.y, ray.d.y, emptyCodes)) * side,
+             static_cast<float>(exitFaceAlong(2, brick.z, ray.d.z, emptyCodes)) * side};
+  return planesExit(ray, invD, exit);
+}
+
+// v (a position in voxels of a level) from the origin of `brick` of that level: where a sample's
+// occupancy cell is read (render/brick_pool.h: occupancyBit).
+GVDP_HD GVDP_INLINE Vec3f voxelInBrick(Vec3f v, Vec3i brick) {
+  return {v.x - static_cast<float>(brick.x * BRICK_WIDTH),
+          v.y - static_cast<float>(brick.y * BRICK_WIDTH),
+          v.z - static_cast<float>(brick.z * BRICK_WIDTH)};
+}
+
 enum class MarchResult : uint8_t { Finished, Stopped };
 
 // Access provides:
@@ -124,14 +143,28 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
         // image does not depend on how far each skip goes.
         bool own = b.level == s.level;
         float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
-        Vec3f exit{static_cast<float>(exitFaceAlong(0, b.brick.x, ray.d.x, b.emptyCodes)) * side,
-                   static_cast<float>(exitFaceAlong(1, b.brick.y, ray.d.y, b.emptyCodes)) * side,
-                   static_cast<float>(exitFaceAlong(2, b.brick.z, ray.d.z, b.emptyCodes)) * side};
         float levelEnd = own ? span.end : lod.levelEnd(b.level);
-        advanceTo(s, lod, span, fminf(planesExit(ray, invD, exit), levelEnd));
+        advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
         continue;
       }
       resident = b;
+      // A brick of the ray's level whose samples from here to where the ray leaves it (or the
+      // level) all lie in clear cells is left at once: each of them samples zero. The cells of
+      // the first and the last sample bound those of the ones between (positions and cells are
+      // monotone along the ray), so the test is exact; a sample past a face that rounds into
+      // the neighbour reads the value the neighbour would give it (the shared border).
+      if (b.state == BrickState::Resident && b.level == s.level) {
+        float tEnd = fminf(boxExit(ray, invD, b.brick, 0u, span.voxelSize * BRICK_WIDTH), span.end);
+        int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
+        if (last > s.step) {
+          Vec3f q = ray.o + ray.d * span.sampleT(last);
+          if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(p / span.voxelSize, b.brick),
+                                                    voxelInBrick(q / span.voxelSize, b.brick)))) {
+            advanceTo(s, lod, span, tEnd);
+            continue;
+          }
+        }
+      }
     }
     Vec4f c = access.sample(b, p);
     float k = 1.0f - s.colour.w;
