@@ -210,7 +210,12 @@ TEST(Cache, EmptyBoxesNameEmptyBricks) {
       BrickKey key{{coord(-40, 40), y, coord(-40, 40)}, level};
       bool bounded = brickBoundedEmpty(world, key);
       if (!bounded && !emptyBySamples(world, key)) continue;
-      EmptyReach r = emptyReach(emptyEntryOf(ThreadScope{}, world, key));
+      uint32_t entry = 0;
+      growEmptyBoxes(ThreadScope{}, world, key, [&](const BrickKey&, uint32_t e) {
+        entry = e;
+        return false;
+      });
+      EmptyReach r = emptyReach(entry);
       if (r.below == Vec3i{0, 0, 0} && r.above == Vec3i{0, 0, 0}) continue;
       ++boxes;
       bySamples += !bounded;

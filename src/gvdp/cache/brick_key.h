@@ -20,7 +20,7 @@ constexpr uint32_t MAX_PRODUCTION_TASKS = 0x70000000u;
 
 // An EMPTY entry says more than "this brick is empty": the box of bricks of its level that
 // reaches below[a] bricks down and above[a] bricks up from it along each axis a is empty too, by
-// the producer's box bound (cache/produce.h: emptyEntryOf), so a ray leaves the whole box with
+// the producer's box bound (cache/produce.h: growEmptyBoxes), so a ray leaves the whole box with
 // one lookup. The entry is ENTRY_EMPTY with the box's reach codes (render/empty_box.h) in its
 // low 24 bits; ENTRY_EMPTY itself is the plain EMPTY brick.
 constexpr uint32_t ENTRY_EMPTY = 0xf0000000u;

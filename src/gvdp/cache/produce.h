@@ -67,87 +67,113 @@ GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces
   return c;
 }
 
-// The bound for the slab that face f adds to a box: the bricks of `outer` beyond `inner`'s reach
-// through f (the two boxes differ in that face only).
-template <class P>
-GVDP_HD GVDP_INLINE bool slabBoundedEmpty(const P& producer, const BrickKey& key,
-                                          const EmptyReachCodes& inner,
-                                          const EmptyReachCodes& outer, int face) {
+// The box, in brick offsets from key.brick (lo, hi inclusive), of the slab that face f adds to
+// a box: the bricks of `outer` beyond its reach through f in `inner` (the codes differ in that
+// face only).
+GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCodes& outer,
+                                int face, Vec3i& lo, Vec3i& hi) {
   EmptyReach in = emptyReach(emptyEntry(inner)), out = emptyReach(emptyEntry(outer));
-  Vec3i lo{-out.below.x, -out.below.y, -out.below.z}, hi = out.above;
+  lo = {-out.below.x, -out.below.y, -out.below.z};
+  hi = out.above;
   auto at = [](Vec3i& v, int axis) -> int& { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
   int axis = face % FACE_ABOVE;
   if (face < FACE_ABOVE)
     at(hi, axis) = -at(in.below, axis) - 1;
   else
     at(lo, axis) = at(in.above, axis) + 1;
-  return boxBoundedEmpty(producer, key, lo, hi);
 }
 
-// The EMPTY entry of an empty brick (brick_key.h: emptyEntry), by every member of the group: its
-// box grown in rounds from the brick (empty by its samples' flags or by the bound). In a round
+// The EMPTY entry of an empty brick (brick_key.h: emptyEntry), by every member of the group,
+// handed to publish(key, entry) (by every member too), which says whether the brick's parent is
+// to be marked as well: if the producer's bound clears it, its entry is grown and handed over
+// likewise, and so on up.
+//
+// A box grows in rounds from the brick (empty by its samples' flags or by the bound). In a round
 // each face still growing tries its next reach (member f tests face f: the slab it adds) and the
 // faces the producer's bound clears grow together if the slabs they add to the box grown in all
 // of them clear too (member f again), else the first of them alone; a face stops at its first
 // refusal. Testing only what a step adds keeps the bound's boxes small (a bound from the centre
 // of a box loosens with its diagonal), so the box stretches along the empty directions: up and
-// sideways above a terrain, along a cave. A round costs each member two bound evaluations.
-template <class Scope, class P>
-GVDP_HD GVDP_INLINE uint32_t emptyEntryOf(const Scope& group, const P& producer,
-                                          const BrickKey& key) {
-  EmptyReachCodes codes{};
-  uint32_t growing = 0x3fu;  // one bit per face
-  while (growing != 0u) {
-    uint32_t cleared = 0u;
-    for (int f = group.rank(); f < 6; f += group.size())
-      if ((growing >> f & 1u) &&
-          slabBoundedEmpty(producer, key, codes, grownCodes(codes, 1u << f), f))
-        cleared |= 1u << f;
-    cleared = group.any(cleared);
-    uint32_t take = cleared;
-    if ((cleared & (cleared - 1u)) != 0u) {  // more than one face: all of them, or the first
-      EmptyReachCodes all = grownCodes(codes, cleared);
-      uint32_t refused = 0u;
-      for (int f = group.rank(); f < 6; f += group.size()) {
-        EmptyReachCodes without = all;
-        without.face[f] = codes.face[f];
-        if ((cleared >> f & 1u) && !slabBoundedEmpty(producer, key, without, all, f))
-          refused |= 1u << f;
+// sideways above a terrain, along a cave.
+//
+// One loop and one call of the producer's bound, which the compiler inlines with the whole
+// world's bound: a step tests the slab of one face (Alone), of the faces grown together
+// (Together), or a parent's brick (Parent).
+template <class Scope, class P, class Publish>
+GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, BrickKey key,
+                                        Publish&& publish) {
+  enum class Step : uint8_t { Alone, Together, Parent };
+  Step step = Step::Alone;
+  EmptyReachCodes codes{}, all{};
+  uint32_t growing = 0x3fu, cleared = 0u;  // one bit per face
+  for (;;) {
+    if (step != Step::Parent && growing == 0u) {  // grown
+      if (!publish(key, emptyEntry(codes))) return;
+      key = {halfFloor(key.brick), key.level + 1};
+      step = Step::Parent;
+    }
+    uint32_t tested = step == Step::Alone ? growing : step == Step::Together ? cleared : 1u;
+    uint32_t passed = 0u;
+    for (int f = group.rank(); f < 6; f += group.size()) {
+      if (!(tested >> f & 1u)) continue;
+      Vec3i lo{0, 0, 0}, hi{0, 0, 0};
+      if (step != Step::Parent) {
+        EmptyReachCodes outer = step == Step::Alone ? grownCodes(codes, 1u << f) : all;
+        EmptyReachCodes inner = outer;
+        inner.face[f] = codes.face[f];
+        slabOf(inner, outer, f, lo, hi);
       }
-      if (group.any(refused) != 0u) take = cleared & (~cleared + 1u);
+      if (boxBoundedEmpty(producer, key, lo, hi)) passed |= 1u << f;
+    }
+    passed = group.any(passed);
+    uint32_t take = 0u;
+    if (step == Step::Parent) {
+      if (passed == 0u) return;
+      codes = {};
+      growing = 0x3fu;
+      step = Step::Alone;
+      continue;
+    }
+    if (step == Step::Alone) {
+      cleared = passed;
+      if ((cleared & (cleared - 1u)) != 0u) {  // more than one face: all of them, or the first
+        all = grownCodes(codes, cleared);
+        step = Step::Together;
+        continue;
+      }
+      take = cleared;
+    } else {
+      take = passed == cleared ? cleared : cleared & (~cleared + 1u);
+      step = Step::Alone;
     }
     codes = grownCodes(codes, take);
     growing = 0u;
     for (int f = 0; f < 6; ++f)
       if ((cleared >> f & 1u) && codes.face[f] < MAX_EMPTY_REACH_CODE) growing |= 1u << f;
   }
-  return emptyEntry(codes);
 }
 
-// An empty brick is published EMPTY with the box the group grows for it (emptyEntryOf), then its
-// ancestors are marked EMPTY, each exactly as its own production would have found it
-// (brickBoundedEmpty and emptyEntryOf), up to the first the producer's bound does not clear or
-// that is not MISSING (claimed, produced or marked already: one CAS each, so a brick in
-// production keeps its state and its claimant loses nothing). A ray that meets a missing brick
-// under one skips it unproduced (cached_access.h).
+// An empty brick is published EMPTY with the box the group grows for it, then its ancestors are
+// marked EMPTY, each exactly as its own production would have found it, up to the first the
+// producer's bound does not clear or that is not MISSING (claimed, produced or marked already:
+// one CAS each, so a brick in production keeps its state and its claimant loses nothing). A ray
+// that meets a missing brick under one skips it unproduced (cached_access.h).
 template <class Scope, class P>
 GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, const CacheView& cache,
                                       BrickKey key) {
   uint32_t index = Clipmap::NOT_IN_WINDOW;  // of an ancestor
-  for (;;) {
-    uint32_t entry = emptyEntryOf(group, producer, key);
+  growEmptyBoxes(group, producer, key, [&](const BrickKey& k, uint32_t entry) {
     uint32_t marked = 1u;
     if (group.rank() == 0) {
       if (index == Clipmap::NOT_IN_WINDOW)
-        publishBrick(cache, key, entry);
+        publishBrick(cache, k, entry);
       else
         marked = atomicCas32(&cache.entries[index], ENTRY_MISSING, entry) == ENTRY_MISSING;
     }
-    if (group.broadcast(marked) == 0u || key.level + 1 >= cache.clipmap.levels) return;
-    key = {halfFloor(key.brick), key.level + 1};
-    index = cache.clipmap.windowEntry(key.level, key.brick);
-    if (index == Clipmap::NOT_IN_WINDOW || !brickBoundedEmpty(producer, key)) return;
-  }
+    if (group.broadcast(marked) == 0u || k.level + 1 >= cache.clipmap.levels) return false;
+    index = cache.clipmap.windowEntry(k.level + 1, halfFloor(k.brick));
+    return index != Clipmap::NOT_IN_WINDOW;
+  });
 }
 
 // Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with

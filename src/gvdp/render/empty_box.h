@@ -1,5 +1,5 @@
 // The empty box of an EMPTY brick, as the march leaves it (render/march.h) and production grows
-// it (cache/produce.h: emptyEntryOf): from the brick, a reach in bricks of its level through
+// it (cache/produce.h: growEmptyBoxes): from the brick, a reach in bricks of its level through
 // each of the six faces, each a 4-bit code in 24 bits (face f at bit 4 f: below x, y, z, then
 // above x, y, z). The codes 0, 1, 2, 3, 4, 6, 8, 12, ... 192 bricks have one mantissa bit, so a
 // reach is at most 1.5x short of what the producer's bound allows.
