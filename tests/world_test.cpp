@@ -256,6 +256,30 @@ TEST(BoxBound, SecondOrderBoundsClearMoreBoxesNearTheSurface) {
   EXPECT_GT(cleared[1], byLipschitz[1] * 11 / 10);
 }
 
+// Below the treetops forest clears boxes by its distance bounds at their centres (the air
+// between trunks, crowns and the ground), only empty ones: 64 points of each checked.
+TEST(BoxBound, ForestClearsTheAirBetweenItsTrees) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> xz(-300.0, 300.0), unit(0.0, 1.0);
+  ForestWorld forest{findScene("forest").world.finest, 1};
+  int cleared = 0;
+  for (int i = 0; i < 4000; ++i) {
+    float voxelSize = ldexpf(forest.voxelSize0(), static_cast<int>(unit(rng) * 4.0));
+    double s = voxelSize * (10.0 + 30.0 * unit(rng));
+    Vec3d lo{xz(rng), -2.0 + (TREE_TOP - s + 2.0) * unit(rng), xz(rng)};
+    Vec3d hi{lo.x + s, lo.y + s, lo.z + s};
+    if (!forest.emptyBox(lo, hi, voxelSize)) continue;
+    ++cleared;
+    for (int k = 0; k < 64; ++k) {
+      Vec3d p{lo.x + s * unit(rng), lo.y + s * unit(rng), lo.z + s * unit(rng)};
+      VoxelSample v = forest.voxel(p, voxelSize);
+      ASSERT_TRUE(v.empty && v.rgba == 0u) << "box " << i << " point " << k;
+    }
+  }
+  std::printf("[ measure ] forest boxes cleared below the treetops: %d of 4000\n", cleared);
+  EXPECT_GT(cleared, 400);
+}
+
 TEST(BoxBound, BuiltinBoundsAreConservative) {
   expectConservativeBound(PerlinWorld{findScene("perlin").world.finest, 1}, -10.0, 80.0, "perlin");
   expectConservativeBound(FbmWorld{findScene("fbm").world.finest, 1}, -10.0, 150.0, "fbm");

@@ -135,33 +135,34 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
         s.level = lod.levels;
         return MarchResult::Finished;
       }
-      // The ray leaves an EMPTY box, or a brick of its level whose samples from here to where the
-      // ray leaves it (or the level) all lie in clear cells (each of them samples zero), at once.
-      // EMPTY: every sample of the box at a level up to the box's own is zero; coarser samples
-      // in it may not be: the skip ends at the box or at the end of its level, whichever comes
-      // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of its
-      // level or a coarser one, whichever boxes the lookups happened to return: the image does
-      // not depend on how far each skip goes. Clear: the cells of the first and the last sample
-      // bound those of the ones between (positions and cells are monotone along the ray), so
-      // the test is exact; a sample before the face that rounds into the neighbour would read
-      // the value the neighbour gives it (the shared border).
-      bool own = b.level == s.level, empty = b.state == BrickState::Empty;
-      if (!empty) resident = b;
-      if (empty || (own && b.state == BrickState::Resident)) {
+      if (b.state == BrickState::Empty) {
+        // Every sample of the box at a level up to the box's own is zero; coarser samples in
+        // it may not be: the skip ends at the box or at the end of its level, whichever comes
+        // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
+        // its level or a coarser one, whichever boxes the lookups happened to return: the
+        // image does not depend on how far each skip goes.
+        bool own = b.level == s.level;
         float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
-        float tEnd = fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side),
-                           own ? span.end : lod.levelEnd(b.level));
-        bool leave = empty;
-        if (!empty) {
-          int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
+        float levelEnd = own ? span.end : lod.levelEnd(b.level);
+        advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
+        continue;
+      }
+      resident = b;
+      // A brick of the ray's level whose samples from here to where the ray leaves it (or the
+      // level) all lie in clear cells is left at once: each of them samples zero. The cells of
+      // the first and the last sample bound those of the ones between (positions and cells are
+      // monotone along the ray), so the test is exact; a sample past a face that rounds into
+      // the neighbour reads the value the neighbour would give it (the shared border).
+      if (b.state == BrickState::Resident && b.level == s.level) {
+        float tEnd = fminf(boxExit(ray, invD, b.brick, 0u, span.voxelSize * BRICK_WIDTH), span.end);
+        int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
+        if (last > s.step) {
           Vec3f q = ray.o + ray.d * span.sampleT(last);
-          leave = last > s.step &&
-                  !(b.occupancy & occupancyCellsBetween(voxelInBrick(p / span.voxelSize, b.brick),
-                                                        voxelInBrick(q / span.voxelSize, b.brick)));
-        }
-        if (leave) {
-          advanceTo(s, lod, span, tEnd);
-          continue;
+          if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(p / span.voxelSize, b.brick),
+                                                    voxelInBrick(q / span.voxelSize, b.brick)))) {
+            advanceTo(s, lod, span, tEnd);
+            continue;
+          }
         }
       }
     }

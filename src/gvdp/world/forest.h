@@ -99,33 +99,55 @@ GVDP_HD GVDP_INLINE LeafHit nearestLeaf(Vec3d p) {
   return best;
 }
 
-GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t seed) {
-  double cellX = floor(p.x / TREE_CELL), cellZ = floor(p.z / TREE_CELL);
-  Tree tree = treeOfCell(static_cast<int>(static_cast<long long>(cellX)),
-                         static_cast<int>(static_cast<long long>(cellZ)), seed);
+// The distance lower bounds of a point against the tree of one cell (corner cellX, cellZ in
+// cells), the ground, and the other cells' trees. Each is 1-Lipschitz in p over all space, the
+// point in the cell or not (the ground's by GROUND_LIPSCHITZ, the crown's ellipsoid scaled by
+// its smallest radius, the others' a max of planes): forestEmptyBox relies on it.
+struct ForestDistances {
+  Tree tree;
+  Vec3f q;  // p relative to the cell's corner
+  Vec3f groundNormal, crownQ;
+  float groundLB, trunk, crown, others;
+
+  GVDP_HD float nearest() const { return fminf(fminf(groundLB, trunk), fminf(crown, others)); }
+};
+
+GVDP_HD GVDP_INLINE ForestDistances forestDistances(Vec3d p, double cellX, double cellZ,
+                                                    uint32_t seed) {
+  ForestDistances f;
+  f.tree = treeOfCell(static_cast<int>(static_cast<long long>(cellX)),
+                      static_cast<int>(static_cast<long long>(cellZ)), seed);
+  const Tree& tree = f.tree;
   Vec3f q{static_cast<float>(p.x - cellX * TREE_CELL), static_cast<float>(p.y),
           static_cast<float>(p.z - cellZ * TREE_CELL)};
+  f.q = q;
   // Other cells' trees stay 1 unit inside their cells and within a band of heights.
   float toBorder = fminf(fminf(q.x, TREE_CELL - q.x), fminf(q.z, TREE_CELL - q.z)) + 1.0f;
-  float others = fmaxf(toBorder, fmaxf(q.y - TREE_TOP, TREE_BOTTOM - q.y));
-
-  Vec3f groundNormal;
-  float gy = groundHeight(p, seed, &groundNormal);
-  float groundLB = (q.y - gy) / GROUND_LIPSCHITZ;
-
-  float trunk = 1e30f, crown = 1e30f;
-  Vec3f crownQ{0, 1, 0};
+  f.others = fmaxf(toBorder, fmaxf(q.y - TREE_TOP, TREE_BOTTOM - q.y));
+  float gy = groundHeight(p, seed, &f.groundNormal);
+  f.groundLB = (q.y - gy) / GROUND_LIPSCHITZ;
+  f.trunk = 1e30f;
+  f.crown = 1e30f;
+  f.crownQ = {0, 1, 0};
   if (tree.exists) {
     Vec3f t = q - tree.base;
     float radial = sqrtf(t.x * t.x + t.z * t.z) - tree.trunkRadius;
     float vertical = fmaxf(-3.0f - t.y, t.y - tree.trunkTop);
     float rx = fmaxf(radial, 0.0f), vx = fmaxf(vertical, 0.0f);
-    trunk = sqrtf(rx * rx + vx * vx) + fminf(fmaxf(radial, vertical), 0.0f);
-    crownQ = (q - tree.crownCentre) *
-             Vec3f{1.0f / tree.crownRadii.x, 1.0f / tree.crownRadii.y, 1.0f / tree.crownRadii.z};
-    crown = (length(crownQ) - 1.0f) * minComponent(tree.crownRadii);
+    f.trunk = sqrtf(rx * rx + vx * vx) + fminf(fmaxf(radial, vertical), 0.0f);
+    f.crownQ = (q - tree.crownCentre) *
+               Vec3f{1.0f / tree.crownRadii.x, 1.0f / tree.crownRadii.y, 1.0f / tree.crownRadii.z};
+    f.crown = (length(f.crownQ) - 1.0f) * minComponent(tree.crownRadii);
   }
-  float nearest = fminf(fminf(groundLB, trunk), fminf(crown, others));
+  return f;
+}
+
+GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t seed) {
+  ForestDistances f = forestDistances(p, floor(p.x / TREE_CELL), floor(p.z / TREE_CELL), seed);
+  const Tree& tree = f.tree;
+  Vec3f q = f.q, groundNormal = f.groundNormal, crownQ = f.crownQ;
+  float groundLB = f.groundLB, trunk = f.trunk, crown = f.crown;
+  float nearest = f.nearest();
   bool empty = nearest >= EMPTY_MARGIN_VOXELS * voxelSize;
 
   // Solid part: ground or trunk.
@@ -164,16 +186,34 @@ GVDP_HD GVDP_INLINE VoxelSample produceForest(Vec3d p, float voxelSize, uint32_t
   return {packRgba8(premultiplied, alpha), empty};
 }
 
-// A box above every tree and the ground is empty (the sky): at height y >= TREE_TOP each distance
-// bound of produceForest is at least the smallest of (y - ground max) / GROUND_LIPSCHITZ,
-// y - TRUNK_MAX_TOP, y - TREE_TOP and, for a crown, (y - TREE_TOP) * min radius / vertical radius
-// >= 0.6 (y - TREE_TOP); 1e-3 covers float rounding.
-GVDP_HD GVDP_INLINE bool forestEmptyBox(Vec3d lo, Vec3d, float voxelSize, uint32_t) {
+// A box is empty (every voxel flagged: produceForest's nearest >= 3 voxels) where
+// - it lies above every tree and the ground (the sky): at height y >= TREE_TOP each distance
+//   bound of produceForest is at least the smallest of (y - ground max) / GROUND_LIPSCHITZ,
+//   y - TRUNK_MAX_TOP, y - TREE_TOP and, for a crown, (y - TREE_TOP) * min radius / vertical
+//   radius >= 0.6 (y - TREE_TOP);
+// - or, for each tree cell it overlaps (at most FOREST_BOX_CELLS), the cell's nearest bound at
+//   the box's centre exceeds the margin by half the box's diagonal (1-Lipschitz,
+//   forestDistances): the air between trunks and crowns.
+// 1e-3 covers float rounding.
+constexpr int FOREST_BOX_CELLS = 4;
+
+GVDP_HD GVDP_INLINE bool forestEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
+  float margin = EMPTY_MARGIN_VOXELS * voxelSize + 1e-3f;
   float y = static_cast<float>(lo.y);
-  if (y < TREE_TOP) return false;
-  float ground = (y - GROUND_AMPLITUDE * NOISE_MAX_ABS) / GROUND_LIPSCHITZ;
-  float nearest = fminf(fminf(ground, y - TRUNK_MAX_TOP), 0.6f * (y - TREE_TOP));
-  return nearest >= EMPTY_MARGIN_VOXELS * voxelSize + 1e-3f;
+  if (y >= TREE_TOP) {
+    float ground = (y - GROUND_AMPLITUDE * NOISE_MAX_ABS) / GROUND_LIPSCHITZ;
+    if (fminf(fminf(ground, y - TRUNK_MAX_TOP), 0.6f * (y - TREE_TOP)) >= margin) return true;
+  }
+  double x0 = floor(lo.x / TREE_CELL), x1 = floor(hi.x / TREE_CELL);
+  double z0 = floor(lo.z / TREE_CELL), z1 = floor(hi.z / TREE_CELL);
+  if ((x1 - x0 + 1.0) * (z1 - z0 + 1.0) > FOREST_BOX_CELLS) return false;
+  Vec3d c{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
+  double dx = hi.x - lo.x, dy = hi.y - lo.y, dz = hi.z - lo.z;
+  float r = static_cast<float>(0.5 * sqrt(dx * dx + dy * dy + dz * dz));
+  for (double cx = x0; cx <= x1; cx += 1.0)
+    for (double cz = z0; cz <= z1; cz += 1.0)
+      if (forestDistances(c, cx, cz, seed).nearest() - r < margin) return false;
+  return true;
 }
 
 }  // namespace gvdp::detail

@@ -1,9 +1,9 @@
 // The five built-in worlds as producers (world/producer.h), each a type of its own, and
 // BuiltinScene, the producer the command line instantiates once: one of the five chosen by tag
 // (docs/STYLE.md 4: no virtual calls in device code). perlin and fbm bound boxes by their
-// gradients and curvature (terrain.h), forest by the height of its trees, random-spheres by the
-// spheres of the cells a box overlaps; aligned-spheres gives no bound (its per-voxel empty flags
-// make its EMPTY bricks).
+// gradients and curvature (terrain.h), forest by the height of its trees and the distances of its
+// cells' trees and ground, random-spheres by the spheres of the cells a box overlaps;
+// aligned-spheres gives no bound (its per-voxel empty flags make its EMPTY bricks).
 #pragma once
 
 #include <cstdint>
