@@ -192,6 +192,20 @@ TEST(Registry, FindsScenesByNameAndRejectsUnknownOnes) {
 namespace gvdp::detail {
 namespace {
 
+// Whether `points` random points of the cube of side s at lo are empty, transparent voxels of
+// the world at voxelSize (a cube its box bound cleared); names the first that is not.
+template <class World>
+::testing::AssertionResult cubeIsEmpty(const World& world, Vec3d lo, double s, float voxelSize,
+                                       int points, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < points; ++k) {
+    Vec3d p{lo.x + s * unit(rng), lo.y + s * unit(rng), lo.z + s * unit(rng)};
+    VoxelSample v = world.voxel(p, voxelSize);
+    if (!v.empty || v.rgba != 0u) return ::testing::AssertionFailure() << "point " << k;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 // The built-in box bounds are conservative: inside a box one clears, every voxel of that size
 // is flagged empty and transparent; each scene with a bound clears some boxes.
 template <class World>
@@ -207,11 +221,7 @@ void expectConservativeBound(const World& world, double yLo, double yHi, const c
     Vec3d hi{lo.x + s, lo.y + s, lo.z + s};
     if (!world.emptyBox(lo, hi, voxelSize)) continue;
     ++cleared;
-    for (int k = 0; k < 16; ++k) {
-      Vec3d p{lo.x + s * unit(rng), lo.y + s * unit(rng), lo.z + s * unit(rng)};
-      VoxelSample v = world.voxel(p, voxelSize);
-      ASSERT_TRUE(v.empty && v.rgba == 0u) << name << " box " << i << " point " << k;
-    }
+    ASSERT_TRUE(cubeIsEmpty(world, lo, s, voxelSize, 16, rng)) << name << " box " << i;
   }
   EXPECT_GT(cleared, 100) << name << ": the bound should clear some boxes";
 }
@@ -243,11 +253,9 @@ TEST(BoxBound, SecondOrderBoundsClearMoreBoxesNearTheSurface) {
       float d = fbmDensity(b.centre, octaves, 1).d + fbmLipschitz(octaves) * b.halfDiagonal;
       byLipschitz[1] += d + DENSITY_SLACK <= -1.5f * fbmEmptyReach(voxelSize, octaves);
     }
-    for (int k = 0; k < 64; ++k) {
-      Vec3d p{lo.x + s * unit(rng), lo.y + s * unit(rng), lo.z + s * unit(rng)};
-      VoxelSample v = which ? fbm.voxel(p, voxelSize) : perlin.voxel(p, voxelSize);
-      ASSERT_TRUE(v.empty && v.rgba == 0u) << (which ? "fbm" : "perlin") << " box " << i;
-    }
+    ASSERT_TRUE(which ? cubeIsEmpty(fbm, lo, s, voxelSize, 64, rng)
+                      : cubeIsEmpty(perlin, lo, s, voxelSize, 64, rng))
+        << (which ? "fbm" : "perlin") << " box " << i;
   }
   std::printf(
       "[ measure ] near-surface boxes cleared: perlin %d (Lipschitz alone %d), fbm %d (%d)\n",
@@ -270,11 +278,7 @@ TEST(BoxBound, ForestClearsTheAirBetweenItsTrees) {
     Vec3d hi{lo.x + s, lo.y + s, lo.z + s};
     if (!forest.emptyBox(lo, hi, voxelSize)) continue;
     ++cleared;
-    for (int k = 0; k < 64; ++k) {
-      Vec3d p{lo.x + s * unit(rng), lo.y + s * unit(rng), lo.z + s * unit(rng)};
-      VoxelSample v = forest.voxel(p, voxelSize);
-      ASSERT_TRUE(v.empty && v.rgba == 0u) << "box " << i << " point " << k;
-    }
+    ASSERT_TRUE(cubeIsEmpty(forest, lo, s, voxelSize, 64, rng)) << "box " << i;
   }
   std::printf("[ measure ] forest boxes cleared below the treetops: %d of 4000\n", cleared);
   EXPECT_GT(cleared, 400);
