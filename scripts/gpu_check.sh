@@ -46,8 +46,9 @@ sanitize() {
   # The scheduler's own degraded frames (then the cold retries of tiles/tiled_frame.cpp);
   # "tiled": frames that overflow 600 bricks, rendered as tiles.
   [ "$pool" = tiny ] && args+=(--tiles off)
-  # pt with its lookahead on (off by default): the protocol with every kind of claim in it.
-  [ "$sched" = pt ] && args+=(--lookahead 4)
+  # pt with its lookahead and prefetch on (off by default): the protocol with every kind of
+  # claim in it (the second frame prefetches for a third).
+  [ "$sched" = pt ] && args+=(--lookahead 4 --prefetch 2)
   local log=/tmp/sanitize.log
   GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
     --backend cuda --scheduler "$sched" --scene "$scene" --movement "$movement" --width 160 \

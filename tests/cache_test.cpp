@@ -123,6 +123,41 @@ TEST(Cache, SlabsLeavingTheWindowAreResetAndTheirSlotsFreed) {
   EXPECT_GE(cache.frameStats().evicted, level0.size());
 }
 
+// A frame's end reads the slots' marks: a brick produced in it and never sampled is
+// over-production; one prefetched for the next frame is counted as such and kept (the LRU sees
+// the next frame); one prefetched for this frame and never sampled is over-production too, and
+// one a ray stamped is neither. markPrefetched leaves a brick a ray sampled as sampled.
+TEST(Cache, PrefetchedBricksAreCountedUsedOrUnusedByTheNextFrame) {
+  constexpr uint32_t F = 7;
+  uint32_t ts[6] = {
+      F | TIMESTAMP_UNSAMPLED, (F + 1) | TIMESTAMP_MARKS, F | TIMESTAMP_MARKS, F, 3, 0};
+  uint32_t counters[COUNTER_COUNT] = {};
+  HostCacheOps::countUnsampled(ts, 6, F, counters);
+  EXPECT_EQ(counters[COUNTER_UNSAMPLED], 2u);
+  EXPECT_EQ(counters[COUNTER_PREFETCH_UNUSED], 1u);
+  EXPECT_EQ(counters[COUNTER_PREFETCHED], 1u);
+  const uint32_t after[6] = {F, (F + 1) | TIMESTAMP_MARKS, F, F, 3, 0};
+  for (int s = 0; s < 6; ++s) EXPECT_EQ(ts[s], after[s]) << "slot " << s;
+  EXPECT_EQ(lastUsedFrame(ts[1]), F + 1) << "the LRU keeps a prefetched brick through its frame";
+
+  // markPrefetched on a published brick: only while no ray of the frame has stamped it.
+  Clipmap clip = clipmapOf(makeFrame({{0.0, 0.0, 0.0}, 0.0f, 0.0f}, 0.01f, 64, 48, 4, 0));
+  std::vector<uint32_t> entries(clip.entryCount(), ENTRY_MISSING), stamps = {0u, 0u};
+  CacheView view{};
+  view.clipmap = clip;
+  view.entries = entries.data();
+  view.timestamps = stamps.data();
+  view.frame = F;
+  BrickKey key{clip.windowOrigin[1] + Vec3i{1, 2, 3}, 1}, sampled{clip.windowOrigin[1], 1};
+  entries[clip.entryIndex(key.level, key.brick)] = 0;
+  entries[clip.entryIndex(sampled.level, sampled.brick)] = 1;
+  stamps = {F | TIMESTAMP_UNSAMPLED, F};
+  markPrefetched(view, key);
+  markPrefetched(view, sampled);
+  EXPECT_EQ(stamps[0], (F + 1) | TIMESTAMP_MARKS);
+  EXPECT_EQ(stamps[1], F);
+}
+
 TEST(Cache, BrickBordersAreSeamless) {
   // Two neighbouring bricks, sampled exactly on their shared face, give the same value.
   BrickCacheCpu cache(64);

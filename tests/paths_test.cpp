@@ -4,6 +4,7 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/bench/paths.h"
+#include "gvdp/render/frame.h"
 
 namespace gvdp::detail {
 
@@ -83,6 +84,35 @@ TEST(Paths, MovementsMoveAsNamed) {
 
 TEST(Paths, RejectsUnknownMovement) {
   EXPECT_THROW(parseMovement("moonwalk"), InputError);
+}
+
+// The prefetch's prediction: for a camera moving and turning at a constant rate, the frame it
+// predicts after frames k and k + 1 is frame k + 2 (its eye across a change of local origin, its
+// basis orthonormal and within a thousandth of a radian).
+TEST(Paths, PredictNextFrameRepeatsTheLastStepAndTurn) {
+  auto frameAt = [](int k) {
+    CameraPose p{
+        {1.0 + 3.1 * k, 2.0 + 0.2 * k, -5.0 - 2.3 * k}, 0.3f + 0.02f * k, -0.1f + 0.01f * k};
+    return makeFrame(p, 0.01f, 320, 200, 8, k);
+  };
+  int originChanges = 0;
+  for (int k = 0; k < 12; ++k) {
+    FrameSetup a = frameAt(k), b = frameAt(k + 1), want = frameAt(k + 2);
+    FrameSetup got = predictNextFrame(a, b);
+    originChanges += dist(want.localOrigin, b.localOrigin) > 0.0;
+    Vec3d gotEye = got.localOrigin + toDouble(got.eye),
+          wantEye = want.localOrigin + toDouble(want.eye);
+    EXPECT_LT(dist(gotEye, wantEye), 1e-4) << "frame " << k + 2;
+    EXPECT_EQ(got.frameIndex, k + 2);
+    const Vec3f g[3] = {got.basis.forward, got.basis.right, got.basis.up};
+    const Vec3f w[3] = {want.basis.forward, want.basis.right, want.basis.up};
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_GT(dot(g[i], w[i]), std::cos(1e-3f)) << "frame " << k + 2 << " axis " << i;
+      EXPECT_NEAR(dot(g[i], g[i]), 1.0f, 1e-5f);
+      EXPECT_NEAR(dot(g[i], g[(i + 1) % 3]), 0.0f, 1e-5f);
+    }
+  }
+  EXPECT_GT(originChanges, 0) << "the path crosses a coarsest brick";
 }
 
 }  // namespace gvdp::detail

@@ -5,6 +5,7 @@
 #include <thread>
 #include <vector>
 
+#include "gvdp/base/parallel.h"
 #include "gvdp/sched/pt/pt_body.h"
 #include "test_util.h"
 
@@ -75,6 +76,56 @@ void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, in
 TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {
   for (const char* scene : {"perlin", "forest", "random-spheres"})
     expectLookaheadChangesNoImage(Backend::Cpu, scene, 96, 64);
+}
+
+// The idle-time prefetch changes what is produced and when, never the image: pt with it renders
+// sp's frames. What it produces for the next frame is counted there, used or not (over-production
+// then), and it has no frame before the first to predict from.
+struct PrefetchCounts {
+  uint64_t claims = 0, prefetched = 0, unused = 0;
+};
+
+PrefetchCounts expectPrefetchChangesNoImage(Backend backend, const std::string& scene, int w,
+                                            int h) {
+  constexpr int FRAMES = 12;
+  Renders sp = renderRun(scene, {backend, SchedulerKind::Sp}, FRAMES, w, h);
+  SchedulerOptions o{backend, SchedulerKind::Pt};
+  o.prefetch = 2;
+  Renders pt = renderRun(scene, o, FRAMES, w, h);
+  PrefetchCounts c;
+  for (int f = 0; f < FRAMES; ++f) {
+    const FrameStats& s = pt.stats[f];
+    EXPECT_EQ(sp.images[f].pixels, pt.images[f].pixels) << scene << " frame " << f;
+    EXPECT_EQ(s.unfinishedPixels, 0);
+    EXPECT_FALSE(s.degraded);
+    EXPECT_LE(s.cache.prefetched, s.cache.produced) << "prefetched bricks are produced bricks";
+    EXPECT_LE(s.cache.prefetchUnused, f ? pt.stats[f - 1].cache.prefetched : 0u)
+        << "only the last frame's prefetched bricks go unused in this one";
+    EXPECT_LE(s.cache.prefetchUnused, s.cache.unsampled) << "unused prefetches are over-production";
+    if (f == 0) {
+      EXPECT_EQ(s.prefetchClaims, 0u) << "no frame before the first to predict from";
+    }
+    c.claims += s.prefetchClaims;
+    if (f + 1 < FRAMES) c.prefetched += s.cache.prefetched;
+    if (f > 0) c.unused += s.cache.prefetchUnused;
+  }
+  std::printf(
+      "[ measure ] %s pt prefetch 2, %dx%d x%d: %llu claimed, %llu resident bricks prefetched, "
+      "%llu of them unused by the next frame\n",
+      scene.c_str(), w, h, FRAMES, static_cast<unsigned long long>(c.claims),
+      static_cast<unsigned long long>(c.prefetched), static_cast<unsigned long long>(c.unused));
+  return c;
+}
+
+// On the CPU a worker is idle with rays still live only now and then (two threads; a production
+// is one thread's), so prefetch claims are asserted over the three scenes together.
+TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
+  uint64_t claims = 0;
+  for (const char* scene : {"perlin", "forest", "random-spheres"})
+    claims += expectPrefetchChangesNoImage(Backend::Cpu, scene, 96, 64).claims;
+  if (ThreadPool::global().size() > 1) {
+    EXPECT_GT(claims, 0u);
+  }
 }
 
 TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
@@ -201,6 +252,18 @@ TEST(GpuPt, LookaheadChangesWhatIsProducedNeverTheImage) {
   GVDP_REQUIRE_GPU();
   for (const char* scene : {"perlin", "forest", "random-spheres"})
     expectLookaheadChangesNoImage(Backend::Cuda, scene, 320, 200);
+}
+
+// On the GPU the frame's tail leaves thousands of warps idle: every scene's prefetch claims
+// bricks, and the next frames use some of them.
+TEST(GpuPt, PrefetchChangesWhatIsProducedNeverTheImage) {
+  GVDP_REQUIRE_GPU();
+  for (const char* scene : {"perlin", "forest", "random-spheres"}) {
+    PrefetchCounts c = expectPrefetchChangesNoImage(Backend::Cuda, scene, 320, 200);
+    EXPECT_GT(c.claims, 0u) << scene;
+    EXPECT_GT(c.prefetched, c.unused)
+        << scene << ": the next frames sampled some prefetched bricks";
+  }
 }
 
 }  // namespace gvdp::detail

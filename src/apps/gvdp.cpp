@@ -58,7 +58,7 @@ struct RenderFlags {
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
   int lodWidth = 0;
-  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead;
+  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead, prefetch;
   std::optional<double> budgetMs;
   float fov = DEFAULT_FOV_DEGREES;
 };
@@ -89,6 +89,11 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "pt: missing bricks a stopped ray claims ahead of it, 0.." +
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_LOOKAHEAD) + "; 0: off)");
+  cmd->add_option("--prefetch", f.prefetch,
+                  "pt: in each frame's tail, produce the bricks of the next frame the camera's "
+                  "motion predicts, marching a ray per N x N pixels, N 0.." +
+                      std::to_string(MAX_PREFETCH) + " (default " +
+                      std::to_string(DEFAULT_PREFETCH) + "; 0: off)");
   cmd->add_option("--budget-ms", f.budgetMs,
                   "frame-time budget: past it, rays whose brick is not ready show the nearest "
                   "resident coarser level (produced for the next frames); 0: never wait; default "
@@ -167,6 +172,8 @@ void refuseUnusedFlags(const RenderFlags& f, SchedulerKind kind) {
   GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.lookahead, "--lookahead ",
                    f.lookahead.value_or(0), " is used by scheduler pt only, not by ",
                    schedulerName(kind));
+  GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.prefetch, "--prefetch ", f.prefetch.value_or(0),
+                   " is used by scheduler pt only, not by ", schedulerName(kind));
   GVDP_INPUT_CHECK(!direct || !f.budgetMs, "--budget-ms ", f.budgetMs.value_or(0.0),
                    " is not used by scheduler direct (it waits for no brick)");
 }
@@ -182,6 +189,13 @@ uint32_t lookaheadFrom(const std::optional<int64_t>& n) {
   if (!n) return DEFAULT_LOOKAHEAD;
   GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_LOOKAHEAD, "bad --lookahead ", *n, " (expected 0..",
                    MAX_LOOKAHEAD, ")");
+  return static_cast<uint32_t>(*n);
+}
+
+uint32_t prefetchFrom(const std::optional<int64_t>& n) {
+  if (!n) return DEFAULT_PREFETCH;
+  GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_PREFETCH, "bad --prefetch ", *n, " (expected 0..",
+                   MAX_PREFETCH, ")");
   return static_cast<uint32_t>(*n);
 }
 
@@ -217,6 +231,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.poolBricks = poolBricksFrom(f.poolBricks, f.poolMb);
   o.scheduler.pendingLaunches = pendingLaunchesFrom(f.pendingLaunches);
   o.scheduler.lookahead = lookaheadFrom(f.lookahead);
+  o.scheduler.prefetch = prefetchFrom(f.prefetch);
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
   o.lodWidth = f.lodWidth;
@@ -406,7 +421,7 @@ struct BenchFlags {
   std::string mesh;
   float lattice = 0.0f;
   std::optional<int> frames, warmup, width, height;
-  std::optional<int64_t> poolBricks, lookahead;
+  std::optional<int64_t> poolBricks, lookahead, prefetch;
   std::optional<double> budgetMs;
   bool scale = false;
 };
@@ -486,6 +501,7 @@ BenchOptions benchOptions(const BenchFlags& f) {
                    " (expected 0..100000)");
   o.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   o.lookahead = lookaheadFrom(f.lookahead);
+  o.prefetch = prefetchFrom(f.prefetch);
   o.budgetMs = budgetFrom(f.budgetMs);
   o.scale = f.scale;
   validate(o);
@@ -675,6 +691,9 @@ int run(int argc, char** argv) {
   benchCmd->add_option(
       "--lookahead", bench.lookahead,
       "pt's lookahead in bricks (default " + std::to_string(DEFAULT_LOOKAHEAD) + ")");
+  benchCmd->add_option("--prefetch", bench.prefetch,
+                       "pt's idle-time prefetch, a ray per N x N pixels (default " +
+                           std::to_string(DEFAULT_PREFETCH) + ": off; see render --prefetch)");
   benchCmd->add_option("--budget-ms", bench.budgetMs,
                        "frame-time budget (see render --budget-ms; default off)");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");

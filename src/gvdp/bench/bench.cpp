@@ -32,6 +32,7 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   s.frames = o.warmup + o.frames;
   SchedulerOptions so{o.backend, k, o.poolBricks};
   so.lookahead = o.lookahead;
+  so.prefetch = o.prefetch;
   so.budgetMs = o.budgetMs;
   s.scheduler = resolvedOptions(so);
   return s;
@@ -53,13 +54,17 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.movement = std::string(movementName(m));
   c.scheduler = std::string(schedulerName(k));
   uint64_t bricks = 0, unsampled = 0, samples = 0, lookups = 0, skips = 0;
+  uint64_t prefetched = 0,
+           prefetchUnused = 0;  // in a measured frame; of its prefetches, in the next
   std::vector<FrameStats> measured;
   for (int f = 0; f < s.frames; ++f) {
     auto t0 = std::chrono::steady_clock::now();
     FrameStats st = renderer->render(poseOf(s, f), image);
     double wall =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (f > o.warmup) prefetchUnused += st.cache.prefetchUnused;
     if (f < o.warmup) continue;
+    if (f + 1 < s.frames) prefetched += st.cache.prefetched;
     c.frameMs.push_back(st.ms);
     c.frameWallMs.push_back(wall);
     bricks += st.cache.produced;
@@ -83,6 +88,10 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
   c.overproduction = bricks ? static_cast<double>(unsampled) / static_cast<double>(bricks) : 0.0;
+  c.prefetchedPerFrame = static_cast<double>(prefetched) / static_cast<double>(o.frames);
+  c.prefetchUsed = prefetched
+                       ? 1.0 - static_cast<double>(prefetchUnused) / static_cast<double>(prefetched)
+                       : 0.0;
   double rays = static_cast<double>(c.frameMs.size()) * s.width * s.height;
   c.samplesPerRay = static_cast<double>(samples) / rays;
   c.lookupsPerRay = static_cast<double>(lookups) / rays;
@@ -129,6 +138,7 @@ BenchResults runBench(const BenchOptions& o,
   r.frames = o.frames;
   r.warmup = o.warmup;
   r.budgetMs = o.budgetMs;
+  r.prefetch = o.prefetch;
   int total = static_cast<int>(o.scenes.size() * o.movements.size() * o.schedulers.size());
   int done = 0;
   for (const std::string& scene : o.scenes)
@@ -148,6 +158,11 @@ BenchResults runBench(const BenchOptions& o,
           std::snprintf(line, sizeof line,
                         "; %.0f%% of frames within %.1f ms, %.2f%% pixels coarser",
                         100.0 * c.withinBudget, o.budgetMs, 100.0 * c.coarserPixels);
+          text += line;
+        }
+        if (o.prefetch) {
+          std::snprintf(line, sizeof line, "; %.0f bricks/frame prefetched, %.1f%% used next",
+                        c.prefetchedPerFrame, 100.0 * c.prefetchUsed);
           text += line;
         }
         progress(++done, total, text);
@@ -190,6 +205,8 @@ std::string benchJson(const BenchResults& r) {
                      {"overproduction", c.overproduction},
                      {"within_budget", c.withinBudget},
                      {"coarser_pixels", c.coarserPixels},
+                     {"prefetched_per_frame", c.prefetchedPerFrame},
+                     {"prefetch_used", c.prefetchUsed},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
@@ -202,9 +219,10 @@ std::string benchJson(const BenchResults& r) {
                      {"height", p.height},
                      {"median_ms", p.medianMs},
                      {"avg_fps", p.avgFps}});
-  return nlohmann::json{{"device", r.device}, {"backend", r.backend}, {"budget_ms", r.budgetMs},
-                        {"width", r.width},   {"height", r.height},   {"frames", r.frames},
-                        {"warmup", r.warmup}, {"cells", cells},       {"scale", scale}}
+  return nlohmann::json{{"device", r.device},     {"backend", r.backend}, {"budget_ms", r.budgetMs},
+                        {"prefetch", r.prefetch}, {"width", r.width},     {"height", r.height},
+                        {"frames", r.frames},     {"warmup", r.warmup},   {"cells", cells},
+                        {"scale", scale}}
       .dump(1);
 }
 
@@ -212,13 +230,15 @@ std::string benchCsv(const BenchResults& r) {
   std::ostringstream s;
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
        "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
-       "skips_per_ray,overproduction,within_budget,coarser_pixels\n";
+       "skips_per_ray,overproduction,within_budget,coarser_pixels,prefetched_per_frame,"
+       "prefetch_used\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
       << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << ',' << c.samplesPerRay
       << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << ','
-      << c.withinBudget << ',' << c.coarserPixels << '\n';
+      << c.withinBudget << ',' << c.coarserPixels << ',' << c.prefetchedPerFrame << ','
+      << c.prefetchUsed << '\n';
   return s.str();
 }
 

@@ -24,6 +24,7 @@ struct BenchOptions {
   int frames = 32, warmup = 6, floorFrames = 8;
   uint32_t poolBricks = 0;
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt's
+  uint32_t prefetch = DEFAULT_PREFETCH;    // pt's
   double budgetMs = NO_BUDGET;             // every cell's frame-time budget
   bool scale = false;  // frame time against resolution for dp on the first scene
 };
@@ -33,8 +34,11 @@ struct BenchCell {
   double avgFps, low1Fps, medianMs, p99Ms, medianWallMs, bricksPerFrame, floorMs, speedupVsSp = 0;
   // Per ray and frame, over the measured frames: samples, brick lookups, empty-space skips.
   double samplesPerRay, lookupsPerRay, skipsPerRay;
-  // Bricks produced in a measured frame that no ray of it sampled, over the bricks produced.
+  // Bricks produced in a measured frame that no ray of it sampled (a prefetched one: of the next
+  // frame), over the bricks produced.
   double overproduction;
+  // pt's prefetch: bricks prefetched per frame, and the share of them the next frame sampled.
+  double prefetchedPerFrame = 0, prefetchUsed = 0;
   // With a budget: the share of measured frames within it, and of their pixels shown coarser.
   double withinBudget = 0, coarserPixels = 0;
   int64_t unfinishedPixels;
@@ -52,7 +56,8 @@ struct BenchScalePoint {
 struct BenchResults {
   std::string device, backend;
   int width, height, frames, warmup;
-  double budgetMs;  // NO_BUDGET: exact frames
+  double budgetMs;    // NO_BUDGET: exact frames
+  uint32_t prefetch;  // pt's (0: off)
   std::vector<BenchCell> cells;
   std::vector<BenchScalePoint> scale;
 };

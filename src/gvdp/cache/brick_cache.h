@@ -10,8 +10,8 @@
 //                                               oldest first; counts[0] = slots stamped 0,
 //                                               counts[1] = slots stamped before `frame`
 //                                               (lastUsedFrame of the timestamps)
-//   countUnsampled(timestamps, n, frame, count) *count += slots produced in `frame` and never
-//                                               sampled, their marks cleared (takeUnsampled)
+//   countUnsampled(timestamps, n, frame, counters)  the slots' marks at the end of `frame`
+//                                               counted and cleared (takeUnsampled, countSlotMark)
 //   setDeadline(uint64_t* at, uint64_t ns)      *at = the backend's clockNanoseconds() + ns,
 //                                               ordered before the frame's rays
 //   unmapSlots(view, slots, n, timeline)        the head of that list, unmapped (cache_ops.h)
@@ -123,8 +123,7 @@ class BrickCache {
 
   // The frame's statistics (once, at its end); the resident count follows from the counters.
   CacheStats frameStats() {
-    ops_.countUnsampled(timestamps_.data(), poolBricks_, frame_,
-                        counters_.data() + COUNTER_UNSAMPLED);
+    ops_.countUnsampled(timestamps_.data(), poolBricks_, frame_, counters_.data());
     uint32_t c[COUNTER_COUNT];
     readCounters(c);
     resident_ = resident_ + c[COUNTER_PRODUCED] - c[COUNTER_EVICTED];

@@ -44,8 +44,8 @@ const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, ui
 }
 
 void HostCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,
-                                  uint32_t* count) {
-  for (uint32_t s = 0; s < n; ++s) *count += takeUnsampled(&timestamps[s], frame) ? 1u : 0u;
+                                  uint32_t* counters) {
+  for (uint32_t s = 0; s < n; ++s) countSlotMark(counters, takeUnsampled(&timestamps[s], frame));
 }
 
 void HostCacheOps::setDeadline(uint64_t* at, uint64_t ns) {

@@ -27,7 +27,7 @@ class HostCacheOps {
   static void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView&);
   const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
                           uint32_t counts[2], const TimelineView&);
-  static void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* count);
+  static void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters);
   static void setDeadline(uint64_t* at, uint64_t ns);
   static void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
                          const TimelineView&);

@@ -51,8 +51,8 @@ void CudaCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_
 }
 
 void CudaCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,
-                                  uint32_t* count) const {
-  launchCountUnsampled(timestamps, n, frame, count, TimelineView{}, stream_);
+                                  uint32_t* counters) const {
+  launchCountUnsampled(timestamps, n, frame, counters, TimelineView{}, stream_);
   GVDP_CUDA_CHECK(cudaGetLastError());
 }
 

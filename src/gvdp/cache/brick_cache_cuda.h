@@ -30,7 +30,7 @@ class CudaCacheOps {
                           uint32_t counts[2], const TimelineView& t);
   void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
                   const TimelineView& t) const;
-  void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* count) const;
+  void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters) const;
   void setDeadline(uint64_t* at, uint64_t ns) const;
   size_t lruBytes() const;
 

@@ -15,9 +15,11 @@ namespace gvdp::detail {
 
 struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
-  uint64_t resident = 0;   // slots holding a brick at the end of the frame
-  uint64_t unsampled = 0;  // bricks produced in the frame that no ray sampled (over-production)
-  uint32_t refills = 0;    // free-list refills after the frame-start one
+  uint64_t resident = 0;    // slots holding a brick at the end of the frame
+  uint64_t unsampled = 0;   // bricks produced in the frame that no ray sampled (over-production)
+  uint64_t prefetched = 0;  // bricks produced in the frame for the next one (pt's prefetch)
+  uint64_t prefetchUnused = 0;  // the last frame's prefetched bricks no ray sampled (in unsampled)
+  uint32_t refills = 0;         // free-list refills after the frame-start one
   // What the rays did (MarchCounter): samples, brick lookups, lookups that skipped empty space,
   // rays (pixels) that showed a coarser level for a brick that was not ready.
   uint64_t samples = 0, lookups = 0, skips = 0, coarser = 0;
@@ -37,6 +39,8 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.failed = counters[COUNTER_FAILED];
   s.evicted = counters[COUNTER_EVICTED];
   s.unsampled = counters[COUNTER_UNSAMPLED];
+  s.prefetched = counters[COUNTER_PREFETCHED];
+  s.prefetchUnused = counters[COUNTER_PREFETCH_UNUSED];
   s.requested = s.produced + s.empty + s.failed;  // every request ends in one of the three
   s.resident = resident;
   s.refills = refills;

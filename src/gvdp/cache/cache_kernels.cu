@@ -48,11 +48,11 @@ void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, ui
                   });
 }
 
-void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* count,
+void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters,
                           const TimelineView& timeline, cudaStream_t stream) {
   parallelForCuda("cache: count unsampled", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
-                    if (takeUnsampled(&timestamps[i], frame)) atomicAdd(count, 1u);
+                    countSlotMark(counters, takeUnsampled(&timestamps[i], frame));
                   });
 }
 

@@ -20,8 +20,8 @@ size_t lruSortTempBytes(uint32_t n);
 void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* keysOut,
              const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit,
              cudaStream_t stream);
-// *count += the slots whose brick was produced in `frame` and never sampled (takeUnsampled).
-void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* count,
+// The slots' marks at the end of `frame` into `counters` (CacheCounter; takeUnsampled).
+void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters,
                           const TimelineView& timeline, cudaStream_t stream);
 // *count = how many of the first n sorted keys are below frame.
 void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,

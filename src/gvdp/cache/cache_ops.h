@@ -94,4 +94,14 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, u
   }
 }
 
+// A published brick produced for the next frame (pt's idle-time prefetch): unless a ray of this
+// frame sampled it already, its timestamp becomes the next frame's with both marks (cache_view.h),
+// which the LRU keeps through that frame and whose end counts it as used or not. A CAS: a ray's
+// stamp of this frame, before or after, wins.
+GVDP_HD GVDP_INLINE void markPrefetched(const CacheView& c, const BrickKey& key) {
+  uint32_t e = loadAcquire32(&c.entries[c.clipmap.entryIndex(key.level, key.brick)]);
+  if (isSlot(e))
+    atomicCas32(&c.timestamps[e], c.frame | TIMESTAMP_UNSAMPLED, (c.frame + 1) | TIMESTAMP_MARKS);
+}
+
 }  // namespace gvdp::detail

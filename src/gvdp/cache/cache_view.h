@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "gvdp/base/atomics.h"
 #include "gvdp/cache/brick_key.h"
 #include "gvdp/cache/clipmap.h"
 
@@ -23,33 +24,57 @@ enum MarchCounter : int {
 };
 
 enum CacheCounter : int {
-  COUNTER_FREE_NEXT,  // next index into the free slot list (may run past freeCount)
-  COUNTER_REQUESTS,   // bricks queued for production (CAS winners)
-  COUNTER_PRODUCED,   // bricks written to the pool
-  COUNTER_EMPTY,      // bricks found empty
-  COUNTER_FAILED,     // productions without a free slot (entry back to MISSING)
-  COUNTER_EVICTED,    // resident bricks unmapped (LRU or leaving the clipmap)
-  COUNTER_UNSAMPLED,  // at the frame's end: bricks produced in it that no ray sampled
-  COUNTER_MARCH = 8,  // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
+  COUNTER_FREE_NEXT,   // next index into the free slot list (may run past freeCount)
+  COUNTER_REQUESTS,    // bricks queued for production (CAS winners)
+  COUNTER_PRODUCED,    // bricks written to the pool
+  COUNTER_EMPTY,       // bricks found empty
+  COUNTER_FAILED,      // productions without a free slot (entry back to MISSING)
+  COUNTER_EVICTED,     // resident bricks unmapped (LRU or leaving the clipmap)
+  COUNTER_UNSAMPLED,   // at the frame's end: bricks produced in it that no ray sampled
+  COUNTER_PREFETCHED,  // at the frame's end: bricks produced in it for the next frame (prefetch)
+  COUNTER_MARCH = 8,   // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
   COUNTER_DEADLINE = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT,  // 64 bits: the frame's (budgeted)
-  COUNTER_COUNT = COUNTER_DEADLINE + 2
+  COUNTER_PREFETCH_UNUSED = COUNTER_DEADLINE + 2,  // at the frame's end: the last frame's
+                                                   // prefetched bricks that no ray of it sampled
+  COUNTER_COUNT
 };
 static_assert(COUNTER_MARCH % 2 == 0, "the march's 64-bit counters must be 8-byte aligned");
 
 // A slot's timestamp from its production until a ray samples it is the frame with this bit set;
 // the LRU order ignores the bit, and the frame's end counts and clears it (over-production).
-constexpr uint32_t TIMESTAMP_UNSAMPLED = 0x80000000u;
+// A brick produced for the next frame (pt's idle-time prefetch) is stamped with that frame and
+// both bits: the LRU keeps it through the next frame, whose end counts it as used (a ray stamped
+// it) or not (over-production).
+constexpr uint32_t TIMESTAMP_UNSAMPLED = 0x80000000u, TIMESTAMP_PREFETCHED = 0x40000000u;
+constexpr uint32_t TIMESTAMP_MARKS = TIMESTAMP_UNSAMPLED | TIMESTAMP_PREFETCHED;
 
 GVDP_HD GVDP_INLINE uint32_t lastUsedFrame(uint32_t timestamp) {
-  return timestamp & ~TIMESTAMP_UNSAMPLED;
+  return timestamp & ~TIMESTAMP_MARKS;
 }
 
-// Frame end, per slot: true when the slot's brick was produced in `frame` and never sampled; its
-// timestamp becomes the frame.
-GVDP_HD GVDP_INLINE bool takeUnsampled(uint32_t* timestamp, uint32_t frame) {
-  if (*timestamp != (frame | TIMESTAMP_UNSAMPLED)) return false;
+// What a frame's end finds in a slot's timestamp (takeUnsampled).
+enum class SlotMark { None, Unsampled, PrefetchUnused, Prefetched };
+
+// Frame end, per slot: Unsampled when its brick was produced in `frame` and never sampled,
+// PrefetchUnused when it was prefetched for `frame` and never sampled (both over-production; the
+// timestamp becomes the frame), Prefetched when it was prefetched in `frame` for the next one.
+GVDP_HD GVDP_INLINE SlotMark takeUnsampled(uint32_t* timestamp, uint32_t frame) {
+  uint32_t t = *timestamp;
+  if (t == ((frame + 1) | TIMESTAMP_MARKS)) return SlotMark::Prefetched;
+  if (t != (frame | TIMESTAMP_UNSAMPLED) && t != (frame | TIMESTAMP_MARKS)) return SlotMark::None;
   *timestamp = frame;
-  return true;
+  return t == (frame | TIMESTAMP_UNSAMPLED) ? SlotMark::Unsampled : SlotMark::PrefetchUnused;
+}
+
+// A slot's mark into the frame's counters (CacheCounter).
+GVDP_HD GVDP_INLINE void countSlotMark(uint32_t* counters, SlotMark m) {
+  if (m == SlotMark::None) return;
+  if (m == SlotMark::Prefetched) {
+    atomicAdd32(&counters[COUNTER_PREFETCHED], 1u);
+    return;
+  }
+  atomicAdd32(&counters[COUNTER_UNSAMPLED], 1u);
+  if (m == SlotMark::PrefetchUnused) atomicAdd32(&counters[COUNTER_PREFETCH_UNUSED], 1u);
 }
 
 struct CacheView {

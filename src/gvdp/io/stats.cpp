@@ -28,6 +28,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   if (used.poolBricks) j["pool_bricks"] = used.poolBricks;
   if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;
   if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
+  if (used.kind == SchedulerKind::Pt) j["prefetch"] = used.prefetch;
   if (used.budgetMs >= 0.0) j["budget_ms"] = used.budgetMs;
   j["tiles"] = o.tiles.mode == TileOptions::Mode::Auto  ? "auto"
                : o.tiles.mode == TileOptions::Mode::Off ? "off"
@@ -60,6 +61,9 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"swept_pixels", f.sweptPixels},
                     {"relaunched_rays", f.relaunchedRays},
                     {"lookahead_claims", f.lookaheadClaims},
+                    {"prefetch_claims", f.prefetchClaims},
+                    {"bricks_prefetched", f.cache.prefetched},
+                    {"prefetched_unused", f.cache.prefetchUnused},
                     {"tiles", f.tiles},
                     {"tile_splits", f.tileSplits},
                     {"tile_plans", f.tilePlans},

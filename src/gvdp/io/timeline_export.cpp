@@ -46,8 +46,9 @@ uint64_t frameEnd(const std::vector<TimelineRecord>& r) {
 constexpr uint32_t rgb(uint32_t r, uint32_t g, uint32_t b) {
   return r | (g << 8) | (b << 16) | 0xff000000u;
 }
-const uint32_t KIND_COLOUR[TASK_KIND_COUNT] = {rgb(220, 40, 40), rgb(50, 90, 230), rgb(60, 190, 80),
-                                               rgb(230, 200, 40), rgb(240, 140, 30)};
+const uint32_t KIND_COLOUR[TASK_KIND_COUNT] = {rgb(220, 40, 40),  rgb(50, 90, 230),
+                                               rgb(60, 190, 80),  rgb(230, 200, 40),
+                                               rgb(240, 140, 30), rgb(40, 190, 200)};
 const uint32_t BOTH_COLOUR = rgb(170, 60, 200);  // render and production on one SM
 const uint32_t IDLE_COLOUR = rgb(0, 0, 0);
 const uint32_t BACKGROUND = rgb(255, 255, 255);
@@ -99,12 +100,13 @@ TimelineStats timelineStats(const std::vector<TimelineRecord>& records, int lane
   for (double& f : s.busyFraction) f /= span * lanes;
   s.idleFraction = span > 0 ? 1.0 - busy / (span * lanes) : 0.0;
   // Tail: from the scheduling work (render, production, sweep; not the final resolve nor the
-  // cache upkeep, which run full-width by construction), the time at its end during which
-  // fewer than half the lanes are busy.
+  // cache upkeep, which run full-width by construction, nor the prefetch, which fills idle
+  // lanes), the time at its end during which fewer than half the lanes are busy.
   std::vector<std::vector<Interval>> work(lanes);
   uint64_t workEnd = t0;
   for (const TimelineRecord& r : records) {
-    if (r.kind == TaskKind::Resolve || r.kind == TaskKind::Cache) continue;
+    if (r.kind == TaskKind::Resolve || r.kind == TaskKind::Cache || r.kind == TaskKind::Prefetch)
+      continue;
     work[std::min<int>(r.smStart, lanes - 1)].push_back({r.start, r.end});
     workEnd = std::max(workEnd, r.end);
   }
@@ -137,12 +139,14 @@ TimelineStats timelineStats(const std::vector<TimelineRecord>& records, int lane
 
 std::string timelineSummary(const TimelineStats& s) {
   char line[512];
-  std::snprintf(line, sizeof line,
-                "timeline: %.3f ms over %d lanes, %zu records; busy render %.1f%% production "
-                "%.1f%% resolve %.1f%% cache %.1f%% sweep %.1f%%; idle %.1f%%; tail %.3f ms",
-                s.spanMs, s.lanes, s.records, 100 * s.busyFraction[0], 100 * s.busyFraction[1],
-                100 * s.busyFraction[2], 100 * s.busyFraction[3], 100 * s.busyFraction[4],
-                100 * s.idleFraction, s.tailMs);
+  std::snprintf(
+      line, sizeof line,
+      "timeline: %.3f ms over %d lanes, %zu records; busy render %.1f%% production "
+      "%.1f%% resolve %.1f%% cache %.1f%% sweep %.1f%% prefetch %.1f%%; idle %.1f%%; tail "
+      "%.3f ms",
+      s.spanMs, s.lanes, s.records, 100 * s.busyFraction[0], 100 * s.busyFraction[1],
+      100 * s.busyFraction[2], 100 * s.busyFraction[3], 100 * s.busyFraction[4],
+      100 * s.busyFraction[5], 100 * s.idleFraction, s.tailMs);
   return line;
 }
 

@@ -5,8 +5,8 @@
 namespace gvdp::detail {
 
 const char* taskKindName(TaskKind k) {
-  static const char* const NAMES[TASK_KIND_COUNT] = {"render", "production", "resolve", "cache",
-                                                     "sweep"};
+  static const char* const NAMES[TASK_KIND_COUNT] = {"render", "production", "resolve",
+                                                     "cache",  "sweep",      "prefetch"};
   return NAMES[static_cast<int>(k)];
 }
 

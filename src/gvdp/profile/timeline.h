@@ -11,8 +11,8 @@
 
 namespace gvdp::detail {
 
-enum class TaskKind : uint8_t { Render, Produce, Resolve, Cache, Sweep };
-constexpr int TASK_KIND_COUNT = 5;
+enum class TaskKind : uint8_t { Render, Produce, Resolve, Cache, Sweep, Prefetch };
+constexpr int TASK_KIND_COUNT = 6;
 const char* taskKindName(TaskKind k);
 
 struct TimelineRecord {

@@ -36,6 +36,24 @@ struct FrameSetup {
   GVDP_HD int pixelCount() const { return width * height; }
 };
 
+// The frame after `current` as the camera's motion from `previous` predicts it: the same step
+// and turn again (the basis extrapolated and made orthonormal), in `current`'s local coordinates,
+// size and LOD. What pt's idle-time prefetch marches.
+inline FrameSetup predictNextFrame(const FrameSetup& previous, const FrameSetup& current) {
+  FrameSetup next = current;
+  Vec3d step =
+      current.localOrigin - previous.localOrigin + toDouble(current.eye) - toDouble(previous.eye);
+  next.eye = toFloat(toDouble(current.eye) + step);
+  const CameraBasis &a = previous.basis, &b = current.basis;
+  Vec3f f = normalize(b.forward * 2.0f - a.forward);
+  Vec3f r = b.right * 2.0f - a.right;
+  r = normalize(r - f * dot(r, f));
+  Vec3f u = b.up * 2.0f - a.up;
+  next.basis = {f, r, normalize(u - f * dot(u, f) - r * dot(u, r))};
+  next.frameIndex = current.frameIndex + 1;
+  return next;
+}
+
 // The frame of pixels [x, x + w) x [y, y + h) of `image` (a frame of the whole image).
 inline FrameSetup tileOf(const FrameSetup& image, int x, int y, int w, int h) {
   FrameSetup t = image;

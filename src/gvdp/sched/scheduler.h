@@ -41,6 +41,7 @@ struct FrameStats {
   int64_t sweptPixels = 0;       // dp: rays the device-side schedule left to the sp sweep
   uint64_t relaunchedRays = 0;   // pt: parked rays a production queued again
   uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
+  uint64_t prefetchClaims = 0;   // pt: bricks claimed for the next frame (idle-time prefetch)
   int tiles = 1;                 // tiles the image was rendered as (tiles/tiled_frame.h)
   int tileSplits = 0;            // renders replaced by tiles (the pool overflowed)
   int tilePlans = 0;             // importance pre-passes run to plan tiles (tiles/tile_plan.h)
@@ -56,6 +57,10 @@ struct FrameStats {
 constexpr uint32_t DEFAULT_LOOKAHEAD = 0;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
 
+// pt's idle-time prefetch (pt_body.h): a ray of the predicted next frame per N x N pixels, 0: off.
+constexpr uint32_t DEFAULT_PREFETCH = 0;
+constexpr uint32_t MAX_PREFETCH = 64;
+
 // A frame-time budget (BrickCache::setBudget): NO_BUDGET (exact frames) by default.
 constexpr double NO_BUDGET = -1.0;
 constexpr double MAX_BUDGET_MS = 60000.0;
@@ -67,6 +72,7 @@ struct SchedulerOptions {
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt: missing bricks a stopped ray claims ahead
+  uint32_t prefetch = DEFAULT_PREFETCH;    // pt: a prefetch ray per N x N pixels (0: none)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
@@ -102,6 +108,7 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.poolBricks = o.kind == SchedulerKind::Direct ? 0 : poolBricksOf(o);
   o.pendingLaunches = o.kind == SchedulerKind::Dp ? pendingLaunchesOf(o) : 0;
   o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
+  o.prefetch = o.kind == SchedulerKind::Pt ? o.prefetch : 0;
   o.budgetMs = o.kind == SchedulerKind::Direct ? NO_BUDGET : o.budgetMs;
   return o;
 }

@@ -100,6 +100,7 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   total.sweptPixels += t.sweptPixels;
   total.relaunchedRays += t.relaunchedRays;
   total.lookaheadClaims += t.lookaheadClaims;
+  total.prefetchClaims += t.prefetchClaims;
   total.lodBias = std::max(total.lodBias, t.lodBias);
   total.tilePlans += t.tilePlans;
   total.planMs += t.planMs;
@@ -111,6 +112,8 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   c.evicted += t.cache.evicted;
   c.resident = t.cache.resident;  // at the end of the last tile
   c.unsampled += t.cache.unsampled;
+  c.prefetched += t.cache.prefetched;
+  c.prefetchUnused += t.cache.prefetchUnused;
   c.refills += t.cache.refills;
   c.samples += t.cache.samples;
   c.lookups += t.cache.lookups;

@@ -17,6 +17,15 @@
 // bricks on its path, each with an id from a ring of its own (`lookaheadIds`), taken only when
 // one is ready (never waited for): without an id the brick stays MISSING for a ray to claim.
 //
+// Idle-time prefetch (`prefetch`, off by default): a worker with nothing to take and no production
+// to help, while rays of the frame are still live (its tail, rays waiting on chains of bricks),
+// marches rays of the next frame as the camera's motion predicts it (predictNextFrame), one per
+// prefetch x prefetch pixels, as lookaheads from their start (coarser stand-ins, no waiting, at
+// most MAX_LATE_CLAIMS claims a ray), with ids from a third ring (`prefetchIds`), and only while
+// half the frame's free slots are left (the lookahead's claims too): the frame's own productions
+// never fail for them. A prefetched brick is stamped for the next frame
+// (markPrefetched), whose end counts whether a ray used it. Nothing is composited.
+//
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
 // so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
 // ray parked on it or about to be, so at most pixels + workers of those ids are out at once, and
@@ -24,6 +33,8 @@
 // no ray waits for (the lookahead's, and those past a budgeted frame's deadline) take ids from a
 // separate ring of PT_LOOKAHEAD_IDS, only when one is ready. `tasks` holds at most all ids.
 #pragma once
+
+#include <utility>
 
 #include "gvdp/cache/lookahead.h"
 #include "gvdp/sched/ray_tasks.h"
@@ -34,6 +45,7 @@ constexpr uint32_t LIST_END = 0xffffffffu, LIST_CLOSED = 0xfffffffeu;
 constexpr int PT_BATCH = 32;                     // rays per render task (a warp)
 constexpr int PT_COUNTER_STRIDE = 32;            // counters sit 128 bytes apart (no false sharing)
 constexpr uint32_t PT_LOOKAHEAD_IDS = 1u << 15;  // task ids for the lookahead's claims
+constexpr uint32_t PT_PREFETCH_IDS = 1u << 14;   // task ids for the prefetch's claims
 
 enum PtCounter : int {
   PT_RAY_HEAD,
@@ -48,12 +60,18 @@ enum PtCounter : int {
   PT_LOOK_HEAD,  // the lookahead's free ids
   PT_LOOK_TAIL,
   PT_LOOK_READY,
-  PT_NEXT_ITEM,     // next item of the tiled screen (fresh rays)
-  PT_LIVE_WORK,     // rays and production tasks not finished; the frame is over at 0
-  PT_PRODUCTIONS,   // production tasks run
-  PT_RELAUNCHED,    // rays queued again by a production
-  PT_RENDER_TASKS,  // render tasks run (fresh and relaunched)
-  PT_LOOKAHEAD,     // bricks claimed by lookaheads
+  PT_PREFETCH_HEAD,  // the prefetch's free ids
+  PT_PREFETCH_TAIL,
+  PT_PREFETCH_READY,
+  PT_NEXT_ITEM,      // next item of the tiled screen (fresh rays)
+  PT_LIVE_WORK,      // rays and production tasks not finished; the frame is over at 0
+  PT_PRODUCTIONS,    // production tasks run
+  PT_RELAUNCHED,     // rays queued again by a production
+  PT_RENDER_TASKS,   // render tasks run (fresh and relaunched)
+  PT_LOOKAHEAD,      // bricks claimed by lookaheads
+  PT_LIVE_RAYS,      // rays not finished (prefetch only while some are)
+  PT_NEXT_PREFETCH,  // next prefetch ray
+  PT_PREFETCHES,     // bricks claimed by the prefetch
   PT_COUNTER_COUNT
 };
 
@@ -142,9 +160,15 @@ struct PtContext {
   CacheView cache;
   RayState* payload;
   Ring rays, tasks, freeIds;
-  Ring lookaheadIds;          // values v: task id firstLookaheadId + v
-  uint32_t firstLookaheadId;  // ids below come from freeIds
-  uint32_t lookahead;         // bricks a stopped ray claims ahead of it (0: none)
+  Ring lookaheadIds;                        // values v: task id firstLookaheadId + v
+  uint32_t firstLookaheadId;                // ids below come from freeIds
+  uint32_t lookahead;                       // bricks a stopped ray claims ahead of it (0: none)
+  Ring prefetchIds;                         // values v: task id firstPrefetchId + v
+  uint32_t firstPrefetchId;                 // ids from here on are the prefetch's
+  FrameSetup prefetchFrame;                 // the predicted next frame (setPrefetch)
+  uint32_t prefetchStride;                  // a prefetch ray per prefetchStride^2 pixels
+  uint32_t prefetchColumns, prefetchItems;  // prefetch rays per row, in all (0: no prefetch)
+  uint32_t prefetchRowStep;   // prefetch rows are taken in the order k * step mod rows
   BrickKey* taskKey;          // per task id
   uint32_t* waitHead;         // per task id: LIST_END, a pixel, or LIST_CLOSED
   uint32_t* waitNext;         // per pixel
@@ -190,8 +214,10 @@ GVDP_HD GVDP_INLINE uint32_t requeueRays(const PtContext& ctx, uint32_t first) {
 GVDP_HD GVDP_INLINE void releaseTaskId(const PtContext& ctx, uint32_t id) {
   if (id < ctx.firstLookaheadId)
     ringPush(ctx.freeIds, id);
-  else
+  else if (id < ctx.firstPrefetchId)
     ringPush(ctx.lookaheadIds, id - ctx.firstLookaheadId);
+  else
+    ringPush(ctx.prefetchIds, id - ctx.firstPrefetchId);
 }
 
 // Claims a MISSING brick for task `id`: a CAS straight from MISSING to the task's name, so that a
@@ -217,14 +243,18 @@ GVDP_HD GVDP_INLINE bool startTask(const PtContext& ctx, uint32_t id, int level,
   return false;
 }
 
-// A claim no ray waits for (a lookahead's, or one past the frame's deadline): an id from
-// `lookaheadIds` if one is ready (one attempt), then startTask; without one the brick stays
-// MISSING. True when this claim started the task.
-GVDP_HD GVDP_INLINE bool startTaskAhead(const PtContext& ctx, int level, Vec3i g, uint32_t* entry) {
+// A claim no ray waits for (a lookahead's, one past the frame's deadline, or the prefetch's): an
+// id from `ids` (values v: task id first + v) if one is ready (one attempt), then startTask;
+// without one the brick stays MISSING. True when this claim started the task.
+GVDP_HD GVDP_INLINE bool startTaskFrom(const PtContext& ctx, const Ring& ids, uint32_t first,
+                                       int level, Vec3i g, uint32_t* entry) {
   uint32_t position = 0;
-  if (ringClaim(ctx.lookaheadIds, 1, &position) == 0) return false;
-  uint32_t id = ctx.firstLookaheadId + ringTake(ctx.lookaheadIds, position);
-  return startTask(ctx, id, level, g, entry);
+  if (ringClaim(ids, 1, &position) == 0) return false;
+  return startTask(ctx, first + ringTake(ids, position), level, g, entry);
+}
+
+GVDP_HD GVDP_INLINE bool startTaskAhead(const PtContext& ctx, int level, Vec3i g, uint32_t* entry) {
+  return startTaskFrom(ctx, ctx.lookaheadIds, ctx.firstLookaheadId, level, g, entry);
 }
 
 // pt's answer to a MISSING brick a ray stops on: a task id from `freeIds`, waited for (one always
@@ -240,16 +270,66 @@ struct StartProduction {
   }
 };
 
-// The lookahead's answer to a MISSING brick: startTaskAhead, counted.
-struct StartLookahead {
+// The answer of a march no ray waits for (the lookahead's, the prefetch's) to a MISSING brick:
+// startTaskFrom its own ids, counted, at most `left` times, and only while half the frame's free
+// slots are left (the frame's own productions must not fail for such claims).
+struct StartAhead {
   const PtContext* ctx;
-  GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
-    if (startTaskAhead(*ctx, level, g, entry)) atomicAdd32(ctx->counter(PT_LOOKAHEAD), 1u);
+  const Ring* ids;
+  uint32_t firstId;
+  PtCounter counted;
+  uint32_t left;
+
+  static GVDP_HD StartAhead lookahead(const PtContext& c) {
+    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, c.lookahead};
   }
-  GVDP_HD void ahead(const CacheView& cache, int level, Vec3i g, uint32_t* entry) const {
+  static GVDP_HD StartAhead prefetch(const PtContext& c) {
+    return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS};
+  }
+  GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) {
+    if (left == 0 || loadRelaxed32(&cache.counters[COUNTER_FREE_NEXT]) >= cache.freeCount / 2)
+      return;
+    --left;
+    if (startTaskFrom(*ctx, *ids, firstId, level, g, entry)) atomicAdd32(ctx->counter(counted), 1u);
+  }
+  GVDP_HD void ahead(const CacheView& cache, int level, Vec3i g, uint32_t* entry) {
     (*this)(cache, level, g, entry);
   }
 };
+
+// Bricks a prefetch ray may enter (it claims at most MAX_LATE_CLAIMS of them).
+constexpr uint32_t PT_PREFETCH_BRICKS = 256;
+
+// Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre of its
+// prefetchStride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: coarser
+// stand-ins, no waiting, no timestamp, nothing composited).
+template <class Pool>
+GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
+  const FrameSetup& f = ctx.prefetchFrame;
+  uint32_t rows = ctx.prefetchItems / ctx.prefetchColumns;
+  uint32_t column = item % ctx.prefetchColumns, row = item / ctx.prefetchColumns;
+  row = static_cast<uint32_t>(uint64_t{row} * ctx.prefetchRowStep % rows);
+  uint32_t s = ctx.prefetchStride;
+  int x = static_cast<int>(column * s + s / 2), y = static_cast<int>(row * s + s / 2);
+  Ray ray = f.primaryRay(x < f.width ? x : f.width - 1, y < f.height ? y : f.height - 1);
+  lookAhead<PoolReads::Coherent>(ray, f.lod, initialRayState(), ctx.cache, pool,
+                                 StartAhead::prefetch(ctx), PT_PREFETCH_BRICKS);
+}
+
+// The first of the next PT_BATCH prefetch rays, prefetchItems when none is to be taken: none
+// left, or no ray of the frame live (the prefetch only fills the frame's tail).
+GVDP_HD GVDP_INLINE uint32_t claimPrefetchItems(const PtContext& ctx) {
+  if (ctx.prefetchItems == 0 || loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) == 0 ||
+      loadRelaxed32(ctx.counter(PT_NEXT_PREFETCH)) >= ctx.prefetchItems)
+    return ctx.prefetchItems;
+  uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_PREFETCH), static_cast<uint32_t>(PT_BATCH));
+  return first < ctx.prefetchItems ? first : ctx.prefetchItems;
+}
+
+// After a production task's brick is published: a prefetch task's is stamped for the next frame.
+GVDP_HD GVDP_INLINE void markIfPrefetched(const PtContext& ctx, uint32_t id, const BrickKey& key) {
+  if (id >= ctx.firstPrefetchId) markPrefetched(ctx.cache, key);
+}
 
 // Parks a stopped ray (its state already saved) on the wait list of the task producing the
 // brick it stopped on; false when there is no such task any more: the ray must march on.
@@ -298,7 +378,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) return true;
     if (again && park.leads(access.stopEntry))
-      lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool, StartLookahead{&ctx},
+      lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool, StartAhead::lookahead(ctx),
                                      ctx.lookahead);
     if (park(ctx, pixel, access.stopEntry)) return false;
   }
@@ -306,15 +386,19 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
 
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
-// PT_BATCH items of the tiled screen, until no ray or task of the frame is left. The Worker
-// supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which with
-// nothing to take helps an open production, its block's first, before it idles):
+// PT_BATCH items of the tiled screen, until no ray or task of the frame is left; with none of
+// those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. The Worker
+// supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which helps
+// an open production, its block's first):
 //   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
 //   void produce(uint32_t position)                         the task at a claimed position
 //   void renderQueued(uint32_t position, uint32_t n)        n claimed relaunched rays
 //   uint32_t claimFresh()                                   first item, itemCount when none is left
 //   void renderFresh(uint32_t first)                        items first .. first + PT_BATCH - 1
+//   bool help()                                             helped a production (false: none)
+//   uint32_t claimPrefetch()                                first, prefetchItems when none
+//   void prefetch(uint32_t first)                           prefetch rays first .. + PT_BATCH - 1
 //   void idle(), finish()                                   nothing to take; the loop is over
 template <class Worker>
 GVDP_HD void ptWorkerLoop(const PtContext& ctx, Worker& w) {
@@ -326,6 +410,9 @@ GVDP_HD void ptWorkerLoop(const PtContext& ctx, Worker& w) {
       w.renderQueued(position, n);
     } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
       w.renderFresh(first);
+    } else if (w.help()) {
+    } else if (uint32_t p = w.claimPrefetch(); p < ctx.prefetchItems) {
+      w.prefetch(p);
     } else {
       w.idle();
     }
@@ -368,14 +455,17 @@ struct PtLayout {
   uint32_t pixels, workers;
 
   uint32_t freeIds() const { return pixels + workers; }  // ids of freeIds; then the lookahead's
-  uint32_t taskIds() const { return freeIds() + PT_LOOKAHEAD_IDS; }
+  uint32_t firstPrefetchId() const { return freeIds() + PT_LOOKAHEAD_IDS; }  // then the prefetch's
+  uint32_t taskIds() const { return firstPrefetchId() + PT_PREFETCH_IDS; }
   uint32_t rayCapacity() const { return ringCapacity(pixels); }
   uint32_t taskCapacity() const { return ringCapacity(taskIds()); }
   uint32_t freeCapacity() const { return ringCapacity(freeIds()); }
   static uint32_t lookaheadCapacity() { return ringCapacity(PT_LOOKAHEAD_IDS); }
+  static uint32_t prefetchCapacity() { return ringCapacity(PT_PREFETCH_IDS); }
   static constexpr size_t COUNTERS = size_t{PT_COUNTER_COUNT} * PT_COUNTER_STRIDE;
   size_t bytes() const {
-    size_t slots = size_t{rayCapacity()} + taskCapacity() + freeCapacity() + lookaheadCapacity();
+    size_t slots = size_t{rayCapacity()} + taskCapacity() + freeCapacity() + lookaheadCapacity() +
+                   prefetchCapacity();
     return slots * sizeof(uint64_t) + size_t{taskIds()} * (sizeof(BrickKey) + sizeof(uint32_t)) +
            size_t{pixels} * sizeof(uint32_t) + COUNTERS * sizeof(uint32_t);
   }
@@ -384,7 +474,7 @@ struct PtLayout {
 // Where a backend keeps pt's buffers, of the layout's sizes: the rings' slots, the task table and
 // wait heads (taskIds), the wait links (pixels), the counters.
 struct PtBuffers {
-  uint64_t *raySlots, *taskSlots, *freeSlots, *lookaheadSlots;
+  uint64_t *raySlots, *taskSlots, *freeSlots, *lookaheadSlots, *prefetchSlots;
   BrickKey* taskKey;
   uint32_t *waitHead, *waitNext, *counters;
   PtLayout layout;
@@ -409,6 +499,8 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
   ctx.lookaheadIds = ring(b.lookaheadSlots, PtLayout::lookaheadCapacity(), PT_LOOK_HEAD);
   ctx.firstLookaheadId = b.layout.freeIds();
   ctx.lookahead = lookahead;
+  ctx.prefetchIds = ring(b.prefetchSlots, PtLayout::prefetchCapacity(), PT_PREFETCH_HEAD);
+  ctx.firstPrefetchId = b.layout.firstPrefetchId();
   ctx.taskKey = b.taskKey;
   ctx.waitHead = b.waitHead;
   ctx.waitNext = b.waitNext;
@@ -421,7 +513,35 @@ inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
   for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = 0;
   c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = layout.freeIds();
   c[PT_LOOK_TAIL * PT_COUNTER_STRIDE] = c[PT_LOOK_READY * PT_COUNTER_STRIDE] = PT_LOOKAHEAD_IDS;
-  c[PT_LIVE_WORK * PT_COUNTER_STRIDE] = layout.pixels;
+  c[PT_PREFETCH_TAIL * PT_COUNTER_STRIDE] = c[PT_PREFETCH_READY * PT_COUNTER_STRIDE] =
+      PT_PREFETCH_IDS;
+  c[PT_LIVE_WORK * PT_COUNTER_STRIDE] = c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = layout.pixels;
+}
+
+// A frame's prefetch (none: stride 0, a tile, a cold cache, or no frame just before it): rays of
+// the next frame as the motion from `previous` predicts it, one per stride x stride pixels, the
+// rows taken in an order that spreads a partial prefetch over the screen (a step about 0.618 of
+// the rows, prime to them).
+inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* previous,
+                        uint32_t stride) {
+  ctx.prefetchItems = 0;
+  if (stride == 0 || previous == nullptr || f.coldCache || f.width != f.imageWidth ||
+      f.height != f.imageHeight || previous->frameIndex + 1 != f.frameIndex ||
+      previous->width != f.width || previous->height != f.height)
+    return;
+  ctx.prefetchFrame = predictNextFrame(*previous, f);
+  ctx.prefetchStride = stride;
+  uint32_t columns = (static_cast<uint32_t>(f.width) + stride - 1) / stride;
+  uint32_t rows = (static_cast<uint32_t>(f.height) + stride - 1) / stride;
+  uint32_t step = static_cast<uint32_t>(0.618 * rows) | 1u;
+  auto gcd = [](uint32_t a, uint32_t b) {
+    while (b) a = std::exchange(b, a % b);
+    return a;
+  };
+  while (gcd(step, rows) != 1) step += 2;
+  ctx.prefetchColumns = columns;
+  ctx.prefetchItems = columns * rows;
+  ctx.prefetchRowStep = step % rows;
 }
 
 }  // namespace gvdp::detail

@@ -1,3 +1,4 @@
+#include <optional>
 #include <vector>
 
 #include "gvdp/base/clock.h"
@@ -14,7 +15,7 @@ namespace {
 class PtCpu final : public SpFrameCpu {
  public:
   PtCpu(const SchedulerOptions& o, ProducerKernelsPtr p)
-      : SpFrameCpu(o, std::move(p)), lookahead_(o.lookahead) {}
+      : SpFrameCpu(o, std::move(p)), lookahead_(o.lookahead), prefetch_(o.prefetch) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
@@ -41,6 +42,8 @@ class PtCpu final : public SpFrameCpu {
     stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
     stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
     stats.lookaheadClaims = *ctx.counter(PT_LOOKAHEAD);
+    stats.prefetchClaims = *ctx.counter(PT_PREFETCHES);
+    previous_ = f;
   }
 
   PtContext prepare(const FrameSetup& f) {
@@ -54,16 +57,19 @@ class PtCpu final : public SpFrameCpu {
     initRing(taskSlots_, layout_.taskCapacity(), 0);
     initRing(freeSlots_, layout_.freeCapacity(), layout_.freeIds());
     initRing(lookaheadSlots_, PtLayout::lookaheadCapacity(), PT_LOOKAHEAD_IDS);
+    initRing(prefetchSlots_, PtLayout::prefetchCapacity(), PT_PREFETCH_IDS);
     taskKey_.resize(layout_.taskIds());
     waitHead_.assign(layout_.taskIds(), LIST_CLOSED);
     waitNext_.assign(layout_.pixels, LIST_END);
     counters_.resize(PtLayout::COUNTERS);
     initialPtCounters(counters_.data(), layout_);
-    return makePtContext(
-        f, cache_.view(), payload_.data(),
-        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(), lookaheadSlots_.data(),
-         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
-        lookahead_);
+    PtContext ctx = makePtContext(f, cache_.view(), payload_.data(),
+                                  {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
+                                   lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
+                                   waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
+                                  lookahead_);
+    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
+    return ctx;
   }
 
   // One worker (a thread) of pt's loop; each task is a record of the timeline.
@@ -80,7 +86,9 @@ class PtCpu final : public SpFrameCpu {
     void produce(uint32_t position) const {
       timed(TaskKind::Produce, [&] {
         uint32_t id = ringTake(ctx.tasks, position);
-        producer.produceBrick(ctx.cache, pool, loadTaskKey(ctx, id));
+        BrickKey key = loadTaskKey(ctx, id);
+        producer.produceBrick(ctx.cache, pool, key);
+        markIfPrefetched(ctx, id, key);
         finishProductionTask(ctx, id);
         atomicAdd32(ctx.counter(PT_PRODUCTIONS), 1u);
       });
@@ -100,6 +108,14 @@ class PtCpu final : public SpFrameCpu {
                    [&](uint32_t i) { return tiledPixel(ctx.frame, static_cast<int>(first + i)); });
       });
     }
+    static bool help() { return false; }  // a production is one thread's
+    uint32_t claimPrefetch() const { return claimPrefetchItems(ctx); }
+    void prefetch(uint32_t first) const {
+      timed(TaskKind::Prefetch, [&] {
+        for (uint32_t i = first; i < first + PT_BATCH && i < ctx.prefetchItems; ++i)
+          prefetchRay(ctx, pool, i);
+      });
+    }
     void idle() const { spinPause(); }
     void finish() const {}
 
@@ -111,7 +127,10 @@ class PtCpu final : public SpFrameCpu {
         int p = pixel(i);
         if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), relaunched)) ++finished;
       }
-      if (finished) atomicAdd32(ctx.counter(PT_LIVE_WORK), 0u - finished);
+      if (finished) {
+        atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);
+        atomicAdd32(ctx.counter(PT_LIVE_WORK), 0u - finished);
+      }
       atomicAdd32(ctx.counter(PT_RENDER_TASKS), 1u);
     }
     template <class Task>
@@ -123,9 +142,10 @@ class PtCpu final : public SpFrameCpu {
     }
   };
 
-  uint32_t lookahead_;
+  uint32_t lookahead_, prefetch_;
+  std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   PtLayout layout_{};
-  std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_;
+  std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;
   std::vector<uint32_t> waitHead_, waitNext_, counters_;
   std::vector<BrickKey> taskKey_;
 };

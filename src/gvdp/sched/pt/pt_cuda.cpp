@@ -1,3 +1,4 @@
+#include <optional>
 #include <vector>
 
 #include "gvdp/sched/producer_kernels_cuda.h"
@@ -14,8 +15,10 @@ class PtCuda final : public SpFrameCuda {
       : SpFrameCuda(o, std::move(producer)),
         counters_(PtLayout::COUNTERS),
         lookaheadSlots_(PtLayout::lookaheadCapacity()),
+        prefetchSlots_(PtLayout::prefetchCapacity()),
         blocks_(cudaProducer().ptWorkerBlocks()),
         lookahead_(o.lookahead),
+        prefetch_(o.prefetch),
         workers_(static_cast<uint32_t>(blocks_) * PT_WORKER_WARPS),
         stage_(size_t{workers_} * BRICK_SAMPLE_COUNT),
         productionKey_(workers_),
@@ -49,6 +52,7 @@ class PtCuda final : public SpFrameCuda {
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
     stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
+    previous_ = f;
   }
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
     SpFrameCuda::finishFrame(f, out, stats);
@@ -57,6 +61,7 @@ class PtCuda final : public SpFrameCuda {
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
     stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
     stats.lookaheadClaims = c[PT_LOOKAHEAD * PT_COUNTER_STRIDE];
+    stats.prefetchClaims = c[PT_PREFETCHES * PT_COUNTER_STRIDE];
     stats.degraded = stats.degraded || stats.cache.failed != 0;
   }
 
@@ -72,17 +77,18 @@ class PtCuda final : public SpFrameCuda {
     waitNext_ = DeviceBuffer<uint32_t>(n);
   }
 
-  // The frame's queues: empty rings, every task id free, every ray fresh and live.
+  // The frame's queues: empty rings, every task id free, every ray fresh and live; its prefetch.
   PtContext prepare(const FrameSetup& f) {
     fillDevice(buffers_.payload.data(), 0, buffers_.payload.bytes(), stream());
     std::vector<uint32_t> c(counters_.size());
     initialPtCounters(c.data(), layout_);
     writeDevice(counters_.data(), c.data(), counters_.bytes(), stream());
-    PtContext ctx = makePtContext(
-        f, cache_.view(), buffers_.payload.data(),
-        {raySlots_.data(), taskSlots_.data(), freeSlots_.data(), lookaheadSlots_.data(),
-         taskKey_.data(), waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
-        lookahead_);
+    PtContext ctx = makePtContext(f, cache_.view(), buffers_.payload.data(),
+                                  {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
+                                   lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
+                                   waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
+                                  lookahead_);
+    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
     uint32_t* words = productionCounters_.data();
     ctx.productions = {stage_.data(),       productionKey_.data(), words,
                        words + workers_,    words + 2 * workers_,  words + 3 * workers_,
@@ -92,11 +98,12 @@ class PtCuda final : public SpFrameCuda {
   }
 
   DeviceBuffer<uint32_t> counters_, waitHead_, waitNext_;
-  DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_;
+  DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
-  uint32_t lookahead_;
-  uint32_t workers_;  // warps of the persistent kernel
+  uint32_t lookahead_, prefetch_;
+  std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
+  uint32_t workers_;                    // warps of the persistent kernel
   DeviceBuffer<Rgba8> stage_;
   DeviceBuffer<BrickKey> productionKey_;
   DeviceBuffer<uint32_t> productionCounters_;  // next, done, nonEmpty per worker; open bits

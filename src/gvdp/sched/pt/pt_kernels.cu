@@ -21,6 +21,7 @@ void launchPtRingsInit(const PtContext& ctx, const PtLayout& layout, cudaStream_
   initRing(ctx.tasks, 0, stream);
   initRing(ctx.freeIds, layout.freeIds(), stream);
   initRing(ctx.lookaheadIds, PT_LOOKAHEAD_IDS, stream);
+  initRing(ctx.prefetchIds, PT_PREFETCH_IDS, stream);
 }
 
 }  // namespace gvdp::detail

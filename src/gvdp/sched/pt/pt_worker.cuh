@@ -102,7 +102,10 @@ __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, 
       pixel >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), relaunched, ParkWarp{});
   unsigned done = __ballot_sync(FULL_MASK, finished);
   if (lane == 0) {
-    if (done) atomicSub(ctx.counter(PT_LIVE_WORK), static_cast<uint32_t>(__popc(done)));
+    if (done) {
+      atomicSub(ctx.counter(PT_LIVE_RAYS), static_cast<uint32_t>(__popc(done)));
+      atomicSub(ctx.counter(PT_LIVE_WORK), static_cast<uint32_t>(__popc(done)));
+    }
     atomicAdd(ctx.counter(PT_RENDER_TASKS), 1u);
   }
 }
@@ -209,6 +212,8 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
   constexpr int PER = (BRICK_SAMPLE_COUNT + 31) / 32;
   commitBrick<PER>(WarpScope{lane}, producer, ctx.cache, pool, key, empty,
                    [&](int, int s) { return loadRelaxed32(&stage[s]); });
+  __syncwarp();
+  if (lane == 0) markIfPrefetched(ctx, id, key);
   uint32_t p = 0;
   if (lane == 0) p = closeWaitList(ctx, id);
   p = __shfl_sync(FULL_MASK, p, 0);
@@ -303,14 +308,27 @@ struct WarpWorker {
                 lane);
     worked();
   }
-  __device__ void idle() {
+  __device__ bool help() {
     uint32_t open = openProduction(ctx.productions, lane);
-    if (open != NO_PRODUCTION) {
-      span.begin(TaskKind::Produce);
-      produceChunks(producer, ctx.productions, open, lane);
-      worked();
-      return;
-    }
+    if (open == NO_PRODUCTION) return false;
+    span.begin(TaskKind::Produce);
+    produceChunks(producer, ctx.productions, open, lane);
+    worked();
+    return true;
+  }
+  __device__ uint32_t claimPrefetch() const {
+    uint32_t first = 0;
+    if (lane == 0) first = claimPrefetchItems(ctx);
+    return __shfl_sync(FULL_MASK, first, 0);
+  }
+  __device__ void prefetch(uint32_t first) {
+    span.begin(TaskKind::Prefetch);
+    uint32_t item = first + static_cast<uint32_t>(lane);
+    if (item < ctx.prefetchItems) prefetchRay(ctx, pool, item);
+    __syncwarp();
+    worked();
+  }
+  __device__ void idle() {
     span.close();
     __nanosleep(backoff);
     backoff = backoff < 1024 ? backoff * 2 : backoff;
