@@ -89,6 +89,9 @@ TEST(Cli, PoolSizesOutOfRangeAreRefusedBeforeAnyArithmetic) {
   expectInputError("render --backend cpu --lookahead -1 --scheduler pt" + out, "--lookahead -1");
   expectInputError("bench" + TINY_BENCH + " --lookahead 9000000000000" + out,
                    "--lookahead 9000000000000");
+  expectInputError("render --backend cpu --prefetch 65 --scheduler pt" + out,
+                   "bad --prefetch 65 (expected 0..64)");
+  expectInputError("bench" + TINY_BENCH + " --prefetch -2" + out, "bad --prefetch -2");
   expectInputError("render --backend cpu --budget-ms -1" + out, "bad --budget-ms -1");
   expectInputError("render --backend cpu --budget-ms 60001" + out,
                    "bad --budget-ms 60001 (expected 0..60000)");
@@ -196,6 +199,10 @@ TEST(Cli, FlagsACommandDoesNotUseAreRefused) {
     expectInputError(
         std::string("render --backend cpu --lookahead 4 --scheduler ") + scheduler + TINY + out,
         std::string("--lookahead 4 is used by scheduler pt only, not by ") + scheduler);
+  for (const char* scheduler : {"sp", "dp", "direct"})
+    expectInputError(
+        std::string("render --backend cpu --prefetch 4 --scheduler ") + scheduler + TINY + out,
+        std::string("--prefetch 4 is used by scheduler pt only, not by ") + scheduler);
   expectInputError("render --backend cpu --scheduler direct --budget-ms 8" + TINY + out,
                    "--budget-ms 8 is not used by scheduler direct");
   expectInputError("timeline --backend cpu --frame 0 --scheduler pt --pending-launches 100 --out " +

@@ -36,6 +36,7 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, PtCpuTest, ::testing::Range(0, SCENE_COUNT))
 SchedulerOptions ptWithLookahead(Backend backend, uint32_t lookahead) {
   SchedulerOptions o{backend, SchedulerKind::Pt};
   o.lookahead = lookahead;
+  o.prefetch = 0;  // the lookahead's claims alone
   return o;
 }
 

@@ -262,8 +262,8 @@ __device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
 }
 
 // One worker (a warp) of pt's loop (pt_body.h): every lane runs every step, lane 0 claims and
-// shares what it claimed. With nothing to take, the warp helps a production of its block (the
-// tail of the frame), or sleeps with an exponential backoff.
+// shares what it claimed. With nothing to take, the warp helps a production (its block's first:
+// the tail of the frame), or marches prefetch rays, or sleeps with an exponential backoff.
 template <class P>
 struct WarpWorker {
   const PtContext& ctx;
@@ -273,10 +273,15 @@ struct WarpWorker {
   WarpSpan span;
   unsigned backoff = 32;
 
+  // What lane 0 finds, for every lane.
+  template <class F>
+  __device__ uint32_t fromLane0(F f) const {
+    uint32_t v = 0;
+    if (lane == 0) v = f();
+    return __shfl_sync(FULL_MASK, v, 0);
+  }
   __device__ uint32_t liveWork() const {
-    uint32_t live = 0;
-    if (lane == 0) live = loadRelaxed32(ctx.counter(PT_LIVE_WORK));
-    return __shfl_sync(FULL_MASK, live, 0);
+    return fromLane0([&] { return loadRelaxed32(ctx.counter(PT_LIVE_WORK)); });
   }
   __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
     return warpClaim(r, n, position, lane);
@@ -296,9 +301,7 @@ struct WarpWorker {
     worked();
   }
   __device__ uint32_t claimFresh() const {
-    uint32_t first = 0;
-    if (lane == 0) first = claimFreshItems(ctx);
-    return __shfl_sync(FULL_MASK, first, 0);
+    return fromLane0([&] { return claimFreshItems(ctx); });
   }
   __device__ void renderFresh(uint32_t first) {
     span.begin(TaskKind::Render);
@@ -317,9 +320,7 @@ struct WarpWorker {
     return true;
   }
   __device__ uint32_t claimPrefetch() const {
-    uint32_t first = 0;
-    if (lane == 0) first = claimPrefetchItems(ctx);
-    return __shfl_sync(FULL_MASK, first, 0);
+    return fromLane0([&] { return claimPrefetchItems(ctx); });
   }
   __device__ void prefetch(uint32_t first) {
     span.begin(TaskKind::Prefetch);
