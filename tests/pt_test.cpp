@@ -86,15 +86,14 @@ struct PrefetchCounts {
   uint64_t claims = 0, prefetched = 0, unused = 0;
 };
 
-PrefetchCounts expectPrefetchChangesNoImage(Backend backend, const std::string& scene, int w,
-                                            int h) {
-  constexpr int FRAMES = 12;
-  Renders sp = renderRun(scene, {backend, SchedulerKind::Sp}, FRAMES, w, h);
+PrefetchCounts expectPrefetchChangesNoImage(Backend backend, const std::string& scene, int w, int h,
+                                            int frames) {
+  Renders sp = renderRun(scene, {backend, SchedulerKind::Sp}, frames, w, h);
   SchedulerOptions o{backend, SchedulerKind::Pt};
   o.prefetch = 2;
-  Renders pt = renderRun(scene, o, FRAMES, w, h);
+  Renders pt = renderRun(scene, o, frames, w, h);
   PrefetchCounts c;
-  for (int f = 0; f < FRAMES; ++f) {
+  for (int f = 0; f < frames; ++f) {
     const FrameStats& s = pt.stats[f];
     EXPECT_EQ(sp.images[f].pixels, pt.images[f].pixels) << scene << " frame " << f;
     EXPECT_EQ(s.unfinishedPixels, 0);
@@ -107,23 +106,24 @@ PrefetchCounts expectPrefetchChangesNoImage(Backend backend, const std::string& 
       EXPECT_EQ(s.prefetchClaims, 0u) << "no frame before the first to predict from";
     }
     c.claims += s.prefetchClaims;
-    if (f + 1 < FRAMES) c.prefetched += s.cache.prefetched;
+    if (f + 1 < frames) c.prefetched += s.cache.prefetched;
     if (f > 0) c.unused += s.cache.prefetchUnused;
   }
   std::printf(
       "[ measure ] %s pt prefetch 2, %dx%d x%d: %llu claimed, %llu resident bricks prefetched, "
       "%llu of them unused by the next frame\n",
-      scene.c_str(), w, h, FRAMES, static_cast<unsigned long long>(c.claims),
+      scene.c_str(), w, h, frames, static_cast<unsigned long long>(c.claims),
       static_cast<unsigned long long>(c.prefetched), static_cast<unsigned long long>(c.unused));
   return c;
 }
 
 // On the CPU a worker is idle with rays still live only now and then (two threads; a production
-// is one thread's), so prefetch claims are asserted over the three scenes together.
+// is one thread's), so prefetch claims are asserted over two scenes together (perlin, whose
+// chains are short, rarely prefetches here; the test also runs under ThreadSanitizer, in CI).
 TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
   uint64_t claims = 0;
-  for (const char* scene : {"perlin", "forest", "random-spheres"})
-    claims += expectPrefetchChangesNoImage(Backend::Cpu, scene, 96, 64).claims;
+  for (const char* scene : {"forest", "random-spheres"})
+    claims += expectPrefetchChangesNoImage(Backend::Cpu, scene, 96, 64, 8).claims;
   if (ThreadPool::global().size() > 1) {
     EXPECT_GT(claims, 0u);
   }
@@ -260,7 +260,7 @@ TEST(GpuPt, LookaheadChangesWhatIsProducedNeverTheImage) {
 TEST(GpuPt, PrefetchChangesWhatIsProducedNeverTheImage) {
   GVDP_REQUIRE_GPU();
   for (const char* scene : {"perlin", "forest", "random-spheres"}) {
-    PrefetchCounts c = expectPrefetchChangesNoImage(Backend::Cuda, scene, 320, 200);
+    PrefetchCounts c = expectPrefetchChangesNoImage(Backend::Cuda, scene, 320, 200, 12);
     EXPECT_GT(c.claims, 0u) << scene;
     EXPECT_GT(c.prefetched, c.unused)
         << scene << ": the next frames sampled some prefetched bricks";
