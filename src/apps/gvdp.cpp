@@ -693,7 +693,7 @@ int run(int argc, char** argv) {
       "pt's lookahead in bricks (default " + std::to_string(DEFAULT_LOOKAHEAD) + ")");
   benchCmd->add_option("--prefetch", bench.prefetch,
                        "pt's idle-time prefetch, a ray per N x N pixels (default " +
-                           std::to_string(DEFAULT_PREFETCH) + ": off; see render --prefetch)");
+                           std::to_string(DEFAULT_PREFETCH) + "; 0: off; see render --prefetch)");
   benchCmd->add_option("--budget-ms", bench.budgetMs,
                        "frame-time budget (see render --budget-ms; default off)");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");

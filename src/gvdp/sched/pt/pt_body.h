@@ -17,8 +17,8 @@
 // bricks on its path, each with an id from a ring of its own (`lookaheadIds`), taken only when
 // one is ready (never waited for): without an id the brick stays MISSING for a ray to claim.
 //
-// Idle-time prefetch (`prefetch`, off by default): a worker with nothing to take and no production
-// to help, while rays of the frame wait on productions (its tail: chains of bricks),
+// Idle-time prefetch (`prefetch`, DEFAULT_PREFETCH; 0: off): a worker with nothing to take and no
+// production to help, while rays of the frame wait on productions (its tail: chains of bricks),
 // marches rays of the next frame as the camera's motion predicts it (predictNextFrame), one per
 // prefetch x prefetch pixels, as lookaheads from their start (coarser stand-ins, no waiting, at
 // most MAX_LATE_CLAIMS claims a ray), with ids from a third ring (`prefetchIds`), and only while
@@ -34,7 +34,7 @@
 // separate ring of PT_LOOKAHEAD_IDS, only when one is ready. `tasks` holds at most all ids.
 #pragma once
 
-#include <utility>
+#include <numeric>
 
 #include "gvdp/cache/lookahead.h"
 #include "gvdp/sched/ray_tasks.h"
@@ -69,7 +69,7 @@ enum PtCounter : int {
   PT_RELAUNCHED,     // rays queued again by a production
   PT_RENDER_TASKS,   // render tasks run (fresh and relaunched)
   PT_LOOKAHEAD,      // bricks claimed by lookaheads
-  PT_LIVE_RAYS,      // rays not finished (prefetch only while some are)
+  PT_LIVE_RAYS,      // rays not finished (prefetch only while some wait on a production)
   PT_NEXT_PREFETCH,  // next prefetch ray
   PT_PREFETCHES,     // bricks claimed by the prefetch
   PT_COUNTER_COUNT
@@ -541,11 +541,7 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
   uint32_t columns = (static_cast<uint32_t>(f.width) + stride - 1) / stride;
   uint32_t rows = (static_cast<uint32_t>(f.height) + stride - 1) / stride;
   uint32_t step = static_cast<uint32_t>(0.618 * rows) | 1u;
-  auto gcd = [](uint32_t a, uint32_t b) {
-    while (b) a = std::exchange(b, a % b);
-    return a;
-  };
-  while (gcd(step, rows) != 1) step += 2;
+  while (std::gcd(step, rows) != 1) step += 2;
   ctx.prefetchColumns = columns;
   ctx.prefetchItems = columns * rows;
   ctx.prefetchRowStep = step % rows;
