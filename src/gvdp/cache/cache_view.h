@@ -24,19 +24,22 @@ enum MarchCounter : int {
 };
 
 enum CacheCounter : int {
-  COUNTER_FREE_NEXT,   // next index into the free slot list (may run past freeCount)
-  COUNTER_REQUESTS,    // bricks queued for production (CAS winners)
-  COUNTER_PRODUCED,    // bricks written to the pool
-  COUNTER_EMPTY,       // bricks found empty
-  COUNTER_FAILED,      // productions without a free slot (entry back to MISSING)
-  COUNTER_EVICTED,     // resident bricks unmapped (LRU or leaving the clipmap)
-  COUNTER_UNSAMPLED,   // at the frame's end: bricks produced in it that no ray sampled
-  COUNTER_PREFETCHED,  // at the frame's end: bricks produced in it for the next frame (prefetch)
-  COUNTER_MARCH = 8,   // first word of the march's 64-bit counters (MarchCounter), 8-byte aligned
-  COUNTER_DEADLINE = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT,  // 64 bits: the frame's (budgeted)
+  COUNTER_FREE_NEXT,     // next index into the free slot list (may run past freeCount)
+  COUNTER_REQUESTS,      // bricks queued for production (CAS winners)
+  COUNTER_PRODUCED,      // bricks written to the pool
+  COUNTER_EMPTY,         // bricks found empty
+  COUNTER_FAILED,        // productions without a free slot (entry back to MISSING)
+  COUNTER_EVICTED,       // resident bricks unmapped (LRU or leaving the clipmap)
+  COUNTER_UNSAMPLED,     // at the frame's end: bricks produced in it that no ray sampled
+  COUNTER_PREFETCHED,    // at the frame's end: bricks produced in it for the next frame (prefetch)
+  COUNTER_DEADLINE = 8,  // 64 bits: the frame's deadline (budgeted)
   COUNTER_PREFETCH_UNUSED = COUNTER_DEADLINE + 2,  // at the frame's end: the last frame's
                                                    // prefetched bricks that no ray of it sampled
-  COUNTER_COUNT
+  // The march's 64-bit counters (MarchCounter), in a 128-byte line of their own: every warp's
+  // march adds to them, and a load of a word in a line under atomics waits behind them (the
+  // degraded test's load of COUNTER_FAILED did, on pt's march: ncu, H100).
+  COUNTER_MARCH = 32,
+  COUNTER_COUNT = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT
 };
 static_assert(COUNTER_MARCH % 2 == 0, "the march's 64-bit counters must be 8-byte aligned");
 

@@ -65,17 +65,19 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
 // ray went on past the frame's deadline); it may decline (the brick stays MISSING).
 //
 // READS says whether bricks may be published while the march's kernel runs (docs/DESIGN.md,
-// "Memory model"). Coherent (dp, pt): an entry is read with an acquire load, which makes the
-// brick's samples and occupancy, written before the producer's release (publishBrick), visible
-// to the reads after it; the pool is read through L2. ReadOnly (sp, graph): production runs in
-// kernels of its own, ordered before the render kernel by the stream or the graph, so every
-// brick the kernel can find resident was published before it began; the only entry writes
-// during the kernel are claims (MISSING to IN_PRODUCTION), which publish nothing. A relaxed load
-// then suffices (an acquire at device scope also invalidates the SM's L1), and the pool, read-only
-// for the kernel's life, is read through L1.
-//
-// TOUCH: a resident brick found is stamped with the frame (it is sampled: the LRU keeps it, and
-// it is not over-production). The lookahead (cache/lookahead.h) reads without stamping.
+// "Memory model"). Every entry is first read with a relaxed load: an EMPTY, MISSING or
+// in-production entry carries nothing the march reads elsewhere (an EMPTY box is in the entry's
+// bits), so nothing needs ordering after it. Coherent (dp, pt): a slot found is read again with an
+// acquire load before the brick is (resident()), which makes its samples and occupancy, written
+// before the producer's release (publishBrick), visible to the reads after it; the entry of a
+// resident brick does not change while a frame runs (slots are freed between frames), so the
+// acquire reads the slot the relaxed load found, the value the release wrote. The pool is read
+// through L2. (One acquire per lookup, before: an acquire at device scope also invalidates the
+// SM's L1, and most lookups find EMPTY or MISSING entries.) ReadOnly (sp, graph): production runs
+// in kernels of its own, ordered before the render kernel by the stream or the graph, so every
+// brick the kernel can find resident was published before it began; the only entry writes during
+// the kernel are claims (MISSING to IN_PRODUCTION), which publish nothing. No acquire then, and
+// the pool, read-only for the kernel's life, is read through L1.
 template <class Pool, class OnMiss = QueueRequest, PoolReads READS = PoolReads::Coherent,
           bool TOUCH = true>
 struct CachedAccess {
@@ -88,23 +90,22 @@ struct CachedAccess {
   uint32_t coarser = 0;     // 1 once a coarser level stood in for a brick that was not ready
   uint32_t lateClaims = 0;  // bricks claimed past the deadline (lateStandIn)
 
-  // An ancestor's entry; MISSING outside its window (never read: it would alias another brick).
-  GVDP_HD uint32_t entryAt(int level, Vec3i localBrick) const {
+  // An ancestor's entry, null outside its window (never read: it would alias another brick).
+  GVDP_HD uint32_t* entryOf(int level, Vec3i localBrick) const {
     uint32_t i = cache.clipmap.windowEntryOfLocal(level, localBrick);
-    return i == Clipmap::NOT_IN_WINDOW ? ENTRY_MISSING : loadEntry(&cache.entries[i]);
+    return i == Clipmap::NOT_IN_WINDOW ? nullptr : &cache.entries[i];
   }
 
-  GVDP_HD static uint32_t loadEntry(const uint32_t* entry) {
-    if constexpr (READS == PoolReads::ReadOnly)
-      return loadRelaxed32(entry);
-    else
-      return loadAcquire32(entry);
+  // An entry's value, relaxed (above); MISSING for a null entry.
+  GVDP_HD static uint32_t peek(const uint32_t* entry) {
+    return entry ? loadRelaxed32(entry) : ENTRY_MISSING;
   }
 
-  // A resident brick, its timestamp set to this frame: on the GPU by a plain store (the
-  // warp's stores to one slot coalesce, and nothing waits on them), on the CPU only when it
-  // changes (a store per lookup would bounce the cache line between threads).
-  GVDP_HD BrickLookup resident(uint32_t slot, int level, Vec3i brick) const {
+  // A resident brick (`slot`, which `entry` holds), its timestamp set to this frame: on the GPU by
+  // a plain store (the warp's stores to one slot coalesce, and nothing waits on them), on the CPU
+  // only when it changes (a store per lookup would bounce the cache line between threads).
+  GVDP_HD BrickLookup resident(const uint32_t* entry, uint32_t slot, int level, Vec3i brick) const {
+    if constexpr (READS == PoolReads::Coherent) loadAcquire32(entry);  // reads `slot` (above)
     if constexpr (TOUCH) {
 #if GVDP_IS_GPU_CODE
       storeRelaxed32(&cache.timestamps[slot], cache.frame);
@@ -113,7 +114,7 @@ struct CachedAccess {
         storeRelaxed32(&cache.timestamps[slot], cache.frame);
 #endif
     }
-    // Written before the entry was published, read after its acquire load.
+    // Written before the entry was published, read after the acquire.
     return {BrickState::Resident, slot, level, brick, pool.template loadOccupancy<READS>(slot)};
   }
 
@@ -158,19 +159,27 @@ struct CachedAccess {
     uint32_t index = cache.clipmap.windowEntryOfLocal(level, brick);
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
-    uint32_t e = loadEntry(entry);
-    if (isSlot(e)) return resident(e, level, brick);
+    uint32_t e = peek(entry);
+    if (isSlot(e)) return resident(entry, e, level, brick);
     if (isEmptyEntry(e)) return empty(level, brick, e);
-    // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production.
-    bool fallBack = degraded();
+    // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production. The
+    // frame's degraded state is read only where it decides (a resident ancestor, or none EMPTY):
+    // most such lookups end at an EMPTY ancestor, and a load of the counter per lookup stalled
+    // pt's march (14% of its warps' samples on perlin's floor frame, ncu, H100).
+    int fallBack = -1;
+    auto fellBack = [&] {
+      if (fallBack < 0) fallBack = degraded() ? 1 : 0;
+      return fallBack == 1;
+    };
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
       a = halfFloor(a);
-      uint32_t ea = entryAt(up, a);
+      uint32_t* at = entryOf(up, a);
+      uint32_t ea = peek(at);
       if (isEmptyEntry(ea)) return empty(up, a, ea);
-      if (isSlot(ea) && fallBack) return showCoarser(resident(ea, up, a));
+      if (isSlot(ea) && fellBack()) return showCoarser(resident(at, ea, up, a));
     }
-    if (fallBack) return showCoarser({BrickState::Empty, 0u, level, brick});  // nothing
+    if (fellBack()) return showCoarser({BrickState::Empty, 0u, level, brick});  // nothing
     if (late()) return showCoarser(lateStandIn(level, brick, e, entry));
     if (e == ENTRY_MISSING) onMiss(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     stopEntry = entry;
@@ -195,7 +204,7 @@ struct CachedAccess {
     uint32_t index = level + 1 < lod.levels ? cache.clipmap.windowEntryOfLocal(level + 1, parent)
                                             : Clipmap::NOT_IN_WINDOW;
     if (index != Clipmap::NOT_IN_WINDOW && lateClaims < MAX_LATE_CLAIMS &&
-        loadEntry(&cache.entries[index]) == ENTRY_MISSING) {
+        peek(&cache.entries[index]) == ENTRY_MISSING) {
       ++lateClaims;
       onMiss.ahead(cache, level + 1, cache.clipmap.globalBrick(level + 1, parent),
                    &cache.entries[index]);
@@ -213,8 +222,9 @@ struct CachedAccess {
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {
       a = halfFloor(a);
-      uint32_t ea = entryAt(up, a);
-      if (isSlot(ea)) return resident(ea, up, a);
+      uint32_t* at = entryOf(up, a);
+      uint32_t ea = peek(at);
+      if (isSlot(ea)) return resident(at, ea, up, a);
     }
     return {BrickState::Empty, 0u, level, brick};
   }
