@@ -108,4 +108,36 @@ TEST(Frame, PrimaryRaysSpanTheFieldOfView) {
   EXPECT_DOUBLE_EQ(f.localOrigin.x + f.eye.x, 1e6);
 }
 
+// The march's products by powers of two (Lod::reach0, inverseVoxelSize0) give the quotients'
+// values exactly, for voxel sizes and angles that are not powers of two as well: the images
+// cannot depend on which one is computed.
+TEST(Lod, ProductsByPowersOfTwoGiveTheQuotientsValues) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float v0 : {0.0625f, 1.0f / 1024.0f, 0.07f, 1.0f / 3.0f, 5.5f}) {
+    for (int width : {160, 1500, 4096}) {
+      Lod lod{v0, 2.0f * std::tan(0.5236f) / static_cast<float>(width), 10};
+      for (int bias : {0, 3, 9, 14}) {
+        lod.bias = bias;
+        for (int level = 0; level < lod.levels; ++level) {
+          float v = lod.voxelSize(level);
+          int farBias = bias - (lod.levels - 1);
+          float angle = level < lod.levels - 1 ? lod.levelAngle()
+                        : farBias > 0          ? lod.pixelAngle * std::ldexp(1.0f, farBias)
+                                               : lod.pixelAngle;
+          EXPECT_EQ(lod.levelEnd(level), v / angle) << v0 << " level " << level << " bias " << bias;
+          if (level > 0) {
+            EXPECT_EQ(lod.levelStart(level), lod.voxelSize(level - 1) / lod.levelAngle());
+          }
+          EXPECT_EQ(lod.inverseVoxelSize(level), 1.0f / v);
+          EXPECT_EQ(lod.span(level).bricksPerUnit, 1.0f / (v * 8.0f));
+          Vec3f p{(u(rng) - 0.5f) * 1e4f, u(rng) * 300.0f, (u(rng) - 0.5f) * 0.01f};
+          Vec3f a = lod.inVoxels(p, level), b = p / v;
+          EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace gvdp::detail

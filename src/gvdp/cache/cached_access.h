@@ -232,7 +232,7 @@ struct CachedAccess {
   // A sample in a clear cell is zero without a read: trilinear() of its eight zero samples.
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
     ++samples;
-    Vec3f v = p / lod.voxelSize(b.level);
+    Vec3f v = lod.inVoxels(p, b.level);
     if (!(b.occupancy & occupancyBit(voxelInBrick(v, b.brick)))) return {0.0f, 0.0f, 0.0f, 0.0f};
     Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
     return pool.template sample<READS>(b.slot, origin, v);

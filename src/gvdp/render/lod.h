@@ -15,7 +15,11 @@ namespace gvdp::detail {
 // keeps them in registers): the same values as Lod's functions, so the same samples.
 struct LevelSpan {
   float voxelSize, start, end;
-  float bricksPerUnit;  // 1 / (BRICK_WIDTH voxelSize): a position's brick is floor(p * this)
+  float bricksPerUnit;     // 1 / (BRICK_WIDTH voxelSize): a position's brick is floor(p * this)
+  float inverseVoxelSize;  // 1 / voxelSize (Lod::inverseVoxelSize)
+
+  // A position in voxel units of the level (Lod::inVoxels).
+  GVDP_HD Vec3f inVoxels(Vec3f p) const { return p * inverseVoxelSize; }
 
   // Distance of lattice sample `step` of the level.
   GVDP_HD float sampleT(int step) const {
@@ -35,22 +39,31 @@ struct Lod {
   // distance (the clipmap is the same) up to bias levels - 1, and each step beyond halves it.
   // 0: exact; the values are then bit for bit the same.
   int bias = 0;
+  // Two quotients, once: the march's positions in voxels and its level ranges are then products
+  // by powers of two, with the values the divisions gave (a rounding commutes with a scaling by a
+  // power of two): v(L) / (pixelAngle 2^b) = reach0 2^(L - b), 1 / v(L) = (1 / v0) 2^-L.
+  float inverseVoxelSize0 = 1.0f / voxelSize0;
+  float reach0 = voxelSize0 / pixelAngle;  // where level 0 ends, bias 0
 
   // v0 2^L, exact (a product by a power of two): ldexpf's value without its cost.
   GVDP_HD float voxelSize(int level) const { return voxelSize0 * exp2i(level); }
+  GVDP_HD float inverseVoxelSize(int level) const { return inverseVoxelSize0 * exp2i(-level); }
+  // A position in voxel units of `level`: p / v(L) as Vec3f's division computes it, p * (1 / v(L)).
+  GVDP_HD Vec3f inVoxels(Vec3f p, int level) const { return p * inverseVoxelSize(level); }
   // The cone spread that picks the levels (exact: a product by a power of two).
   GVDP_HD float levelAngle() const { return pixelAngle * exp2i(bias); }
   GVDP_HD float levelStart(int level) const {
-    return level == 0 ? 0.0f : voxelSize(level - 1) / levelAngle();
+    return level == 0 ? 0.0f : reach0 * exp2i(level - 1 - bias);
   }
   GVDP_HD float levelEnd(int level) const {
-    if (level < levels - 1) return voxelSize(level) / levelAngle();
+    if (level < levels - 1) return reach0 * exp2i(level - bias);
     int farBias = bias - (levels - 1);
-    return voxelSize(level) / (farBias > 0 ? pixelAngle * exp2i(farBias) : pixelAngle);
+    return reach0 * exp2i(farBias > 0 ? level - farBias : level);
   }
   GVDP_HD LevelSpan span(int level) const {
     float v = voxelSize(level);
-    return {v, levelStart(level), levelEnd(level), 1.0f / (v * BRICK_WIDTH)};
+    float inverse = inverseVoxelSize(level);
+    return {v, levelStart(level), levelEnd(level), inverse * (1.0f / BRICK_WIDTH), inverse};
   }
   GVDP_HD float sampleT(int level, int step) const { return span(level).sampleT(step); }
   // The first lattice step of `level` at or after distance t.

@@ -158,8 +158,8 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
         int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
         if (last > s.step) {
           Vec3f q = ray.o + ray.d * span.sampleT(last);
-          if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(p / span.voxelSize, b.brick),
-                                                    voxelInBrick(q / span.voxelSize, b.brick)))) {
+          if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(span.inVoxels(p), b.brick),
+                                                    voxelInBrick(span.inVoxels(q), b.brick)))) {
             advanceTo(s, lod, span, tEnd);
             continue;
           }
