@@ -63,10 +63,13 @@ GVDP_HD GVDP_INLINE Vec3f paletteColour(float t) {
           0.5f + 0.4f * cosf(2.0f * PI * (t + 0.67f))};
 }
 
+// A cell's sphere; 70% of the cells have none, and their other fields are left zero unhashed (the
+// neighbour loops of production and of the box bound look at `exists` first).
 GVDP_HD GVDP_INLINE Sphere randomSphereOf(Vec3i cell, uint32_t seed) {
   int x = cell.x, y = cell.y, z = cell.z;
-  Sphere s;
+  Sphere s{};
   s.exists = hash3Unit(x, y, z, seed) < 0.3f;
+  if (!s.exists) return s;
   s.radius = 0.6f + 1.6f * hash3Unit(x, y, z, seed + 1);
   float room = SPHERE_CELL - 2.0f * (s.radius + 0.05f);
   s.centre = {s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 2),
