@@ -56,29 +56,6 @@ GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& ke
   return boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0});
 }
 
-// A box is bounded in pieces, up to BOUND_PIECES along each axis it spans several bricks of (the
-// group's members test the pieces of all faces at once): a bound from a box's centre loosens with
-// its diagonal, so the pieces clear slabs the whole would not. On the CPU, perlin's floor frame
-// at 750x500 took 74.5 lookups per ray with one piece, 58.6 with 2 per axis, 51.8 with 3.
-constexpr int BOUND_PIECES = 2;
-constexpr int BOUND_PIECES_PER_BOX = BOUND_PIECES * BOUND_PIECES * BOUND_PIECES;
-
-// Narrows [lo, hi] to piece `piece` (digits x, y, z in base BOUND_PIECES); false when the box has
-// no such piece (an axis fewer bricks wide than the digit needs).
-GVDP_HD GVDP_INLINE bool boundPiece(int piece, Vec3i& lo, Vec3i& hi) {
-  auto cut = [](int& a, int& b, int k) {
-    int w = b - a + 1, n = w < BOUND_PIECES ? w : BOUND_PIECES;
-    if (k >= n) return false;
-    int from = a + w * k / n;
-    b = a + w * (k + 1) / n - 1;
-    a = from;
-    return true;
-  };
-  return cut(lo.x, hi.x, piece % BOUND_PIECES) &&
-         cut(lo.y, hi.y, piece / BOUND_PIECES % BOUND_PIECES) &&
-         cut(lo.z, hi.z, piece / (BOUND_PIECES * BOUND_PIECES));
-}
-
 // The reach codes with `faces` (a bit per face) one step further: 0 to 1, then two codes
 // (about twice the reach), up to the last.
 GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces) {
@@ -136,9 +113,8 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
       step = Step::Parent;
     }
     uint32_t tested = step == Step::Alone ? growing : step == Step::Together ? cleared : 1u;
-    uint32_t failed = 0u;
-    for (int t = group.rank(); t < 6 * BOUND_PIECES_PER_BOX; t += group.size()) {
-      int f = t / BOUND_PIECES_PER_BOX;
+    uint32_t passed = 0u;
+    for (int f = group.rank(); f < 6; f += group.size()) {
       if (!(tested >> f & 1u)) continue;
       Vec3i lo{0, 0, 0}, hi{0, 0, 0};
       if (step != Step::Parent) {
@@ -147,10 +123,9 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
         inner.face[f] = codes.face[f];
         slabOf(inner, outer, f, lo, hi);
       }
-      if (boundPiece(t % BOUND_PIECES_PER_BOX, lo, hi) && !boxBoundedEmpty(producer, key, lo, hi))
-        failed |= 1u << f;
+      if (boxBoundedEmpty(producer, key, lo, hi)) passed |= 1u << f;
     }
-    uint32_t passed = tested & ~group.any(failed);
+    passed = group.any(passed);
     uint32_t take = 0u;
     if (step == Step::Parent) {
       if (passed == 0u) return;
