@@ -130,10 +130,12 @@ TEST(Lod, ProductsByPowersOfTwoGiveTheQuotientsValues) {
             EXPECT_EQ(lod.levelStart(level), lod.voxelSize(level - 1) / lod.levelAngle());
           }
           EXPECT_EQ(lod.inverseVoxelSize(level), 1.0f / v);
-          EXPECT_EQ(lod.span(level).bricksPerUnit, 1.0f / (v * 8.0f));
           Vec3f p{(u(rng) - 0.5f) * 1e4f, u(rng) * 300.0f, (u(rng) - 0.5f) * 0.01f};
           Vec3f a = lod.inVoxels(p, level), b = p / v;
           EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z);
+          // A position's brick: the same as through the reciprocal of the brick's width.
+          float bricksPerUnit = 1.0f / (v * 8.0f);
+          EXPECT_TRUE(lod.span(level).brickOf(p) == floorToInt(p * bricksPerUnit));
         }
       }
     }

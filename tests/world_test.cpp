@@ -8,6 +8,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/world/noise.h"
 #include "gvdp/world/registry.h"
+#include "gvdp/world/spheres.h"
 #include "gvdp/world/terrain.h"
 
 namespace gvdp::detail {
@@ -175,6 +176,44 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SceneTest, ::testing::Range(0, SCENE_COUNT),
                              if (ch == '-') ch = '_';
                            return n;
                          });
+
+// random-spheres looks at the neighbour cells within reach only and stops at the first sphere
+// within it (world/spheres.h): its empty flag must be the one the spheres of all 26 neighbours
+// give, at every level the neighbours decide it and beyond.
+TEST(RandomSpheres, EmptyFlagIsTheOneAllNeighboursGive) {
+  const uint32_t SEED = 9u;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-60.0, 60.0);
+  for (int level = 0; level < 7; ++level) {
+    float vs = std::ldexp(1.0f / 16.0f, level), reach = EMPTY_MARGIN_VOXELS * vs;
+    int empties = 0, nearBorder = 0;
+    for (int i = 0; i < 20000; ++i) {
+      Vec3d p{u(rng), u(rng), u(rng)};
+      SphereCell c = sphereCellOf(p);
+      Sphere own = randomSphereOf(c.cell, SEED);
+      float nearest = own.exists ? sphereLength(c.local - own.centre) - own.radius : 1e30f;
+      float border = distanceToCellBorder(c.local);
+      if (border < reach && reach <= SPHERE_CELL) {
+        ++nearBorder;
+        for (int n = 0; n < 27; ++n) {
+          Vec3i d{n % 3 - 1, (n / 3) % 3 - 1, n / 9 - 1};
+          Sphere s = randomSphereOf(c.cell + d, SEED);
+          if (!s.exists || (d.x == 0 && d.y == 0 && d.z == 0)) continue;
+          Vec3f centre = s.centre + Vec3f{d.x * SPHERE_CELL, d.y * SPHERE_CELL, d.z * SPHERE_CELL};
+          nearest = std::min(nearest, sphereLength(c.local - centre) - s.radius);
+        }
+      } else {
+        nearest = std::min(nearest, border);
+      }
+      bool empty = nearest >= reach;
+      ASSERT_EQ(produceRandomSpheres(p, vs, SEED).empty, empty)
+          << "level " << level << " at " << p.x << " " << p.y << " " << p.z;
+      empties += empty;
+    }
+    if (level < 4) EXPECT_GT(empties, 1000) << "level " << level;  // not degenerate
+    if (level >= 1 && level <= 5) EXPECT_GT(nearBorder, 5000) << "level " << level;
+  }
+}
 
 TEST(Registry, FindsScenesByNameAndRejectsUnknownOnes) {
   EXPECT_EQ(findScene("forest").world.kind, SceneKind::Forest);

@@ -159,17 +159,20 @@ struct CachedAccess {
     uint32_t index = cache.clipmap.windowEntryOfLocal(level, brick);
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
-    uint32_t e = peek(entry);
+    uint32_t e = loadRelaxed32(entry);
     if (isSlot(e)) return resident(entry, e, level, brick);
     if (isEmptyEntry(e)) return empty(level, brick, e);
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production. The
     // frame's degraded state is read only where it decides (a resident ancestor, or none EMPTY):
     // most such lookups end at an EMPTY ancestor, and a load of the counter per lookup stalled
     // pt's march (14% of its warps' samples on perlin's floor frame, ncu, H100).
-    int fallBack = -1;
+    bool known = false, fell = false;
     auto fellBack = [&] {
-      if (fallBack < 0) fallBack = degraded() ? 1 : 0;
-      return fallBack == 1;
+      if (!known) {
+        fell = degraded();
+        known = true;
+      }
+      return fell;
     };
     Vec3i a = brick;
     for (int up = level + 1; up < lod.levels; ++up) {

@@ -15,11 +15,13 @@ namespace gvdp::detail {
 // keeps them in registers): the same values as Lod's functions, so the same samples.
 struct LevelSpan {
   float voxelSize, start, end;
-  float bricksPerUnit;     // 1 / (BRICK_WIDTH voxelSize): a position's brick is floor(p * this)
   float inverseVoxelSize;  // 1 / voxelSize (Lod::inverseVoxelSize)
 
   // A position in voxel units of the level (Lod::inVoxels).
   GVDP_HD Vec3f inVoxels(Vec3f p) const { return p * inverseVoxelSize; }
+  // The brick of the level holding a position: floor(p / (BRICK_WIDTH voxelSize)), as products
+  // by the reciprocal and a power of two (the same value as p * (inverseVoxelSize / 8)).
+  GVDP_HD Vec3i brickOf(Vec3f p) const { return floorToInt(inVoxels(p) * (1.0f / BRICK_WIDTH)); }
 
   // Distance of lattice sample `step` of the level.
   GVDP_HD float sampleT(int step) const {
@@ -63,17 +65,17 @@ struct Lod {
   GVDP_HD LevelSpan span(int level) const {
     float v = voxelSize(level);
     float inverse = inverseVoxelSize(level);
-    return {v, levelStart(level), levelEnd(level), inverse * (1.0f / BRICK_WIDTH), inverse};
+    return {v, levelStart(level), levelEnd(level), inverse};
   }
   GVDP_HD float sampleT(int level, int step) const { return span(level).sampleT(step); }
   // The first lattice step of `level` at or after distance t.
   GVDP_HD int firstStepAtOrAfter(int level, float t) const {
     return firstStepAtOrAfter(span(level), t);
   }
-  // No division: an estimate through the reciprocal (8 bricksPerUnit), then settled on the
+  // No division: an estimate through the reciprocal (inverseVoxelSize), then settled on the
   // lattice itself (sampleT), so the answer is exact whatever the estimate's rounding.
   GVDP_HD static int firstStepAtOrAfter(const LevelSpan& span, float t) {
-    float k = ceilf((t - span.start) * (span.bricksPerUnit * BRICK_WIDTH) - 0.5f);
+    float k = ceilf((t - span.start) * span.inverseVoxelSize - 0.5f);
     int step = k > 0.0f ? static_cast<int>(k) : 0;
     if (step > 0 && span.sampleT(step - 1) >= t) return step - 1;
     return span.sampleT(step) < t ? step + 1 : step;

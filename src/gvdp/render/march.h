@@ -126,7 +126,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
     Vec3f p = ray.o + ray.d * t;
     // A position on a brick face may round to either brick: both give it the same value
     // (neighbouring bricks share their border samples, and EMPTY bounds reach a voxel beyond).
-    Vec3i brick = floorToInt(p * span.bricksPerUnit);
+    Vec3i brick = span.brickOf(p);
     BrickLookup b = resident;
     if (!covers(resident, s.level, brick)) {
       b = access.lookup(s.level, brick);

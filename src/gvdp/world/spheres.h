@@ -5,6 +5,7 @@
 // the distance to every other sphere (conservativeness).
 #pragma once
 
+#include "gvdp/base/rounded_math.h"
 #include "gvdp/world/hash.h"
 #include "gvdp/world/voxel.h"
 
@@ -27,6 +28,23 @@ GVDP_HD GVDP_INLINE SphereCell sphereCellOf(Vec3d p) {
        static_cast<int>(static_cast<long long>(cz))}};
 }
 
+// |v| with its products fused in one fixed order on the GPU, y y first: nvcc may contract
+// x x + y y + z z either way and chooses by the code around it (a change to the neighbour loop
+// once changed a few voxels by one unit). The spheres' distances and normals use it, so that the
+// worlds do not depend on the code around them.
+GVDP_HD GVDP_INLINE float sphereLength(Vec3f v) {
+#if GVDP_IS_GPU_CODE
+  return sqrtf(fmaf(v.z, v.z, fmaf(v.x, v.x, roundedMul(v.y, v.y))));
+#else
+  return length(v);
+#endif
+}
+
+GVDP_HD GVDP_INLINE Vec3f sphereNormal(Vec3f v) {
+  float l = sphereLength(v);
+  return l > 0.0f ? v * (1.0f / l) : Vec3f{0.0f, 1.0f, 0.0f};
+}
+
 // Opacity of a sphere seen through voxels of size voxelSize: a one-voxel band outside the
 // surface (so that a sphere smaller than a voxel is never missed by the voxel centres), scaled
 // down by the fraction of the voxel it covers.
@@ -44,17 +62,20 @@ struct Sphere {
   bool exists;
   Vec3f centre;  // relative to its cell's corner
   float radius;
-  Vec3f albedo;
 };
 
-// `others`: a lower bound of the distance to the spheres of other cells.
+// The voxel of sphere s (its cell's, of colour albedo(), asked only for a voxel it covers).
+// `others`: the distance to the spheres of other cells, or a value on the same side of the
+// margin (it decides the empty flag only).
+template <class Albedo>
 GVDP_HD GVDP_INLINE VoxelSample produceSphere(const SphereCell& c, const Sphere& s, float others,
-                                              float voxelSize) {
-  float distance = s.exists ? length(c.local - s.centre) - s.radius : 1e30f;
+                                              float voxelSize, Albedo albedo) {
+  float distance = s.exists ? sphereLength(c.local - s.centre) - s.radius : 1e30f;
   bool empty = fminf(distance, others) >= EMPTY_MARGIN_VOXELS * voxelSize;
   if (!s.exists) return {0u, empty};
-  return makeVoxel(s.albedo, normalize(c.local - s.centre),
-                   sphereAlpha(distance, s.radius, voxelSize), empty);
+  float alpha = sphereAlpha(distance, s.radius, voxelSize);
+  if (alpha <= 0.0f) return {0u, empty};
+  return makeVoxel(albedo(), sphereNormal(c.local - s.centre), alpha, empty);
 }
 
 GVDP_HD GVDP_INLINE Vec3f paletteColour(float t) {
@@ -64,7 +85,8 @@ GVDP_HD GVDP_INLINE Vec3f paletteColour(float t) {
 }
 
 // A cell's sphere; 70% of the cells have none, and their other fields are left zero unhashed (the
-// neighbour loops of production and of the box bound look at `exists` first).
+// neighbour loops of production and of the box bound look at `exists` first). Its colour is
+// hashed apart (randomSphereAlbedo), only for the voxels a sphere covers.
 GVDP_HD GVDP_INLINE Sphere randomSphereOf(Vec3i cell, uint32_t seed) {
   int x = cell.x, y = cell.y, z = cell.z;
   Sphere s{};
@@ -75,28 +97,51 @@ GVDP_HD GVDP_INLINE Sphere randomSphereOf(Vec3i cell, uint32_t seed) {
   s.centre = {s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 2),
               s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 3),
               s.radius + 0.05f + room * hash3Unit(x, y, z, seed + 4)};
-  s.albedo = paletteColour(hash3Unit(x, y, z, seed + 5));
   return s;
 }
 
+GVDP_HD GVDP_INLINE Vec3f randomSphereAlbedo(Vec3i cell, uint32_t seed) {
+  return paletteColour(hash3Unit(cell.x, cell.y, cell.z, seed + 5));
+}
+
+// The neighbour offset (-1, 0 or 1) along one axis whose cells can come within `reach` of local
+// coordinate l: a bit each for -1, 0, +1 (0 always). Every sphere lies more than 0.05 inside its
+// cell, so a neighbour cell farther than reach along one axis holds no sphere within reach.
+GVDP_HD GVDP_INLINE uint32_t neighbourSides(float l, float reach) {
+  return 2u | (l < reach ? 1u : 0u) | (SPHERE_CELL - l < reach ? 4u : 0u);
+}
+
+// Whether a sphere of the neighbour cells comes within reach of c (reach <= SPHERE_CELL). Only
+// the neighbours within reach along every axis can (neighbourSides); the loop ends at the first.
+GVDP_HD GVDP_INLINE bool neighbourSphereWithin(const SphereCell& c, float reach, uint32_t seed) {
+  uint32_t sx = neighbourSides(c.local.x, reach), sy = neighbourSides(c.local.y, reach),
+           sz = neighbourSides(c.local.z, reach);
+  for (int n = 0; n < 27; ++n) {
+    Vec3i d{n % 3 - 1, (n / 3) % 3 - 1, n / 9 - 1};
+    if (d.x == 0 && d.y == 0 && d.z == 0) continue;
+    if (!(sx >> (d.x + 1) & sy >> (d.y + 1) & sz >> (d.z + 1) & 1u)) continue;
+    Sphere s = randomSphereOf(c.cell + d, seed);
+    if (!s.exists) continue;
+    Vec3f centre = s.centre + Vec3f{d.x * SPHERE_CELL, d.y * SPHERE_CELL, d.z * SPHERE_CELL};
+    if (sphereLength(c.local - centre) - s.radius < reach) return true;
+  }
+  return false;
+}
+
+// The empty flag is min(own sphere's distance, others) >= reach, and `others` serves nothing
+// else: near a border (when the margin fits in one cell; coarser voxels keep the border bound,
+// and such bricks are never empty anyway) the neighbours' spheres decide it, looked at only when
+// the own sphere leaves it open.
 GVDP_HD GVDP_INLINE VoxelSample produceRandomSpheres(Vec3d p, float voxelSize, uint32_t seed) {
   SphereCell c = sphereCellOf(p);
   float reach = EMPTY_MARGIN_VOXELS * voxelSize;
+  Sphere own = randomSphereOf(c.cell, seed);
   float others = distanceToCellBorder(c.local);
-  // Near a border, the neighbours' actual spheres bound the distance (when the margin fits in
-  // one cell; coarser voxels keep the border bound, and such bricks are never empty anyway).
   if (others < reach && reach <= SPHERE_CELL) {
-    others = 1e30f;
-    for (int n = 0; n < 27; ++n) {
-      Vec3i d{n % 3 - 1, (n / 3) % 3 - 1, n / 9 - 1};
-      if (d.x == 0 && d.y == 0 && d.z == 0) continue;
-      Sphere s = randomSphereOf(c.cell + d, seed);
-      if (!s.exists) continue;
-      Vec3f centre = s.centre + Vec3f{d.x * SPHERE_CELL, d.y * SPHERE_CELL, d.z * SPHERE_CELL};
-      others = fminf(others, length(c.local - centre) - s.radius);
-    }
+    bool ownWithin = own.exists && sphereLength(c.local - own.centre) - own.radius < reach;
+    others = ownWithin || neighbourSphereWithin(c, reach, seed) ? 0.0f : 1e30f;
   }
-  return produceSphere(c, randomSphereOf(c.cell, seed), others, voxelSize);
+  return produceSphere(c, own, others, voxelSize, [&] { return randomSphereAlbedo(c.cell, seed); });
 }
 
 // random-spheres' box bound (the producer's emptyBox, world/producer.h). Its empty flag is exact
@@ -134,9 +179,10 @@ GVDP_HD GVDP_INLINE VoxelSample produceAlignedSpheres(Vec3d p, float voxelSize, 
   SphereCell c = sphereCellOf(p);
   const float RADIUS = 2.0f, HALF = 0.5f * SPHERE_CELL;
   float t = 0.13f * static_cast<float>((c.cell.x * 3 + c.cell.y * 5 + c.cell.z * 7) & 7);
-  Sphere s{true, {HALF, HALF, HALF}, RADIUS, paletteColour(t)};
+  Sphere s{true, {HALF, HALF, HALF}, RADIUS};
   // Every neighbour's sphere is HALF - RADIUS inside its cell.
-  return produceSphere(c, s, distanceToCellBorder(c.local) + (HALF - RADIUS), voxelSize);
+  return produceSphere(c, s, distanceToCellBorder(c.local) + (HALF - RADIUS), voxelSize,
+                       [&] { return paletteColour(t); });
 }
 
 }  // namespace gvdp::detail
