@@ -329,5 +329,34 @@ TEST(BoxBound, BuiltinBoundsAreConservative) {
   expectConservativeBound(ForestWorld{findScene("forest").world.finest, 1}, 0.0, 60.0, "forest");
 }
 
+// A group tests a box bound in parts (cache/produce.h: growEmptyBoxes, brickBoundedEmpty): every
+// part clear must mean exactly what the whole bound says, whatever the number of parts, for
+// random-spheres' split bound and for a bound in one part (perlin's: part 0 is the whole).
+TEST(BoxBound, PartsGiveTheWholeBoundsAnswer) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> at(-100.0, 100.0), unit(0.0, 1.0);
+  const BuiltinScene spheres = findScene("random-spheres").world,
+                     perlin = findScene("perlin").world;
+  int cleared = 0, refused = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const BuiltinScene& world = i % 4 == 3 ? perlin : spheres;
+    int level = static_cast<int>(unit(rng) * 5.0);
+    float voxelSize = ldexpf(world.voxelSize0(), level);
+    double s = 10.0 * voxelSize * (1.0 + 8.0 * unit(rng));
+    Vec3d lo{at(rng), i % 4 == 3 ? 20.0 + at(rng) * 0.3 : at(rng), at(rng)};
+    Vec3d hi{lo.x + s, lo.y + s * unit(rng), lo.z + s};
+    bool whole = world.emptyBox(lo, hi, voxelSize);
+    (whole ? cleared : refused) += 1;
+    for (int parts : {1, 2, 5, 16}) {
+      bool all = true;
+      for (int part = 0; part < parts; ++part)
+        all = emptyBoxPartOf(world, lo, hi, voxelSize, part, parts) && all;
+      ASSERT_EQ(all, whole) << "box " << i << ", " << parts << " parts";
+    }
+  }
+  EXPECT_GT(cleared, 300);
+  EXPECT_GT(refused, 300);
+}
+
 }  // namespace
 }  // namespace gvdp::detail

@@ -40,20 +40,40 @@ GVDP_HD GVDP_INLINE VoxelSample produceBrickSample(const P& producer, const Bric
 
 // The producer's emptiness bound for the box of the samples of the bricks key.brick + lo to
 // key.brick + hi (offsets, inclusive), widened by one voxel (the reach of the empty-flag
-// contract, world/producer.h). lo = hi = 0: true makes the brick EMPTY unevaluated.
+// contract, world/producer.h), or its part `part` of `parts` (emptyBoxPart). lo = hi = 0: true
+// makes the brick EMPTY unevaluated.
 template <class P>
-GVDP_HD GVDP_INLINE bool boxBoundedEmpty(const P& producer, const BrickKey& key, Vec3i lo,
-                                         Vec3i hi) {
+GVDP_HD GVDP_INLINE bool boxBoundedEmpty(const P& producer, const BrickKey& key, Vec3i lo, Vec3i hi,
+                                         int part = 0, int parts = 1) {
   double vs = ldexp(static_cast<double>(producer.voxelSize0()), key.level);
   Vec3d a = brickSampleCentre({key.brick + lo, key.level}, 0, producer.voxelSize0());
   Vec3d b =
       brickSampleCentre({key.brick + hi, key.level}, BRICK_SAMPLE_COUNT - 1, producer.voxelSize0());
-  return producer.emptyBox(a - Vec3d{vs, vs, vs}, b + Vec3d{vs, vs, vs}, static_cast<float>(vs));
+  return emptyBoxPartOf(producer, a - Vec3d{vs, vs, vs}, b + Vec3d{vs, vs, vs},
+                        static_cast<float>(vs), part, parts);
 }
 
 template <class P>
 GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& key) {
   return boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0});
+}
+
+// A group tests a bound in up to MAX_BOX_PARTS parts at once (world/producer.h: emptyBoxPart; the
+// answer does not depend on the number): random-spheres' bound walks up to 125 cells a box, and
+// its empty bricks' boxes (up to a hundred bounds each) were their production's longest chain.
+constexpr int MAX_BOX_PARTS = 16;
+
+GVDP_HD GVDP_INLINE int boxPartsFor(int members) {
+  return members < MAX_BOX_PARTS ? members : MAX_BOX_PARTS;
+}
+
+// brickBoundedEmpty by a group, every member with the answer.
+template <class Scope, class P>
+GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const Scope& group, const P& producer,
+                                           const BrickKey& key) {
+  int parts = boxPartsFor(group.size());
+  return group.all(group.rank() >= parts ||
+                   boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0}, group.rank(), parts));
 }
 
 // The reach codes with `faces` (a bit per face) one step further: 0 to 1, then two codes
@@ -89,12 +109,13 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // likewise, and so on up.
 //
 // A box grows in rounds from the brick (empty by its samples' flags or by the bound). In a round
-// each face still growing tries its next reach (member f tests face f: the slab it adds) and the
-// faces the producer's bound clears grow together if the slabs they add to the box grown in all
-// of them clear too (member f again), else the first of them alone; a face stops at its first
-// refusal. Testing only what a step adds keeps the bound's boxes small (a bound from the centre
-// of a box loosens with its diagonal), so the box stretches along the empty directions: up and
-// sideways above a terrain, along a cave.
+// each face still growing tries its next reach (the slab it adds) and the faces the producer's
+// bound clears grow together if the slabs they add to the box grown in all of them clear too,
+// else the first of them alone; a face stops at its first refusal. Each test is a face's bound in
+// parts, one member a part (boxPartsFor: a sixth of the group, at most MAX_BOX_PARTS). Testing only
+// what a step adds keeps the bound's boxes small (a bound from the centre of a box loosens with its
+// diagonal), so the box stretches along the empty directions: up and sideways above a terrain,
+// along a cave.
 //
 // One loop and one call of the producer's bound, which the compiler inlines with the whole
 // world's bound: a step tests the slab of one face (Alone), of the faces grown together
@@ -106,6 +127,7 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
   Step step = Step::Alone;
   EmptyReachCodes codes{}, all{};
   uint32_t growing = 0x3fu, cleared = 0u;  // one bit per face
+  const int parts = boxPartsFor(group.size() / 6 > 0 ? group.size() / 6 : 1);
   for (;;) {
     if (step != Step::Parent && growing == 0u) {  // grown
       if (!publish(key, emptyEntry(codes))) return;
@@ -113,8 +135,9 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
       step = Step::Parent;
     }
     uint32_t tested = step == Step::Alone ? growing : step == Step::Together ? cleared : 1u;
-    uint32_t passed = 0u;
-    for (int f = group.rank(); f < 6; f += group.size()) {
+    uint32_t failed = 0u;
+    for (int t = group.rank(); t < 6 * parts; t += group.size()) {
+      int f = t / parts;
       if (!(tested >> f & 1u)) continue;
       Vec3i lo{0, 0, 0}, hi{0, 0, 0};
       if (step != Step::Parent) {
@@ -123,9 +146,9 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
         inner.face[f] = codes.face[f];
         slabOf(inner, outer, f, lo, hi);
       }
-      if (boxBoundedEmpty(producer, key, lo, hi)) passed |= 1u << f;
+      if (!boxBoundedEmpty(producer, key, lo, hi, t % parts, parts)) failed |= 1u << f;
     }
-    passed = group.any(passed);
+    uint32_t passed = tested & ~group.any(failed);
     uint32_t take = 0u;
     if (step == Step::Parent) {
       if (passed == 0u) return;
@@ -221,7 +244,7 @@ template <int PER, class Scope, class P>
 GVDP_HD GVDP_INLINE void produceBrick(const Scope& group, const P& producer, const CacheView& cache,
                                       const BrickPool& pool, const BrickKey& key) {
   Rgba8 values[PER];
-  bool bounded = brickBoundedEmpty(producer, key);  // the same answer in every member
+  bool bounded = brickBoundedEmpty(group, producer, key);
   bool empty = true;
   GVDP_UNROLL
   for (int k = 0; k < PER; ++k) {

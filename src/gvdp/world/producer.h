@@ -8,7 +8,13 @@
 //   bool emptyBox(Vec3d lo, Vec3d hi, float voxelSize) const   a conservative emptiness bound for
 //       a box: true only when voxel(c, v) would flag every centre c of [lo, hi] empty for this v,
 //       so a brick whose box it clears is EMPTY without evaluating one voxel (false: no bound);
-//   float voxelSize0() const    the voxel size of level 0 (the finest), in world units.
+//   float voxelSize0() const    the voxel size of level 0 (the finest), in world units;
+// and optionally
+//   bool emptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize, int part, int parts) const
+//       emptyBox's bound split into `parts` parts that members of a group test at once: the box
+//       is clear when every part says so, and then exactly when emptyBox says so (random-spheres:
+//       the cells the box overlaps, strided). Without it, part 0 is the whole bound
+//       (emptyBoxPartOf).
 // Both member functions are GVDP_HD (__host__ __device__). The renderer is a template on the
 // producer, instantiated where the type is known (include/gvdp/make_renderer.h).
 #pragma once
@@ -27,5 +33,20 @@ concept Producer = std::is_trivially_copyable_v<P> &&
   { p.emptyBox(x, x, voxelSize) } -> std::same_as<bool>;
   { p.voxelSize0() } -> std::convertible_to<float>;
 };
+
+template <class P>
+concept SplitBoxBound = requires(const P& p, Vec3d x, float voxelSize, int k) {
+  { p.emptyBoxPart(x, x, voxelSize, k, k) } -> std::same_as<bool>;
+};
+
+// Part `part` of `parts` of a producer's box bound (above).
+template <Producer P>
+GVDP_HD GVDP_INLINE bool emptyBoxPartOf(const P& p, Vec3d lo, Vec3d hi, float voxelSize, int part,
+                                        int parts) {
+  if constexpr (SplitBoxBound<P>)
+    return p.emptyBoxPart(lo, hi, voxelSize, part, parts);
+  else
+    return part != 0 || p.emptyBox(lo, hi, voxelSize);
+}
 
 }  // namespace gvdp::detail

@@ -20,9 +20,10 @@ GVDP_HD GVDP_INLINE bool noBoxBound(Vec3d, Vec3d, float, uint32_t) {
 }
 
 // A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size,
-// and its box bound.
+// its box bound and, if it has one, the bound in parts (world/producer.h: emptyBoxPart).
 template <VoxelSample (*FN)(Vec3d, float, uint32_t),
-          bool (*EMPTY_BOX)(Vec3d, Vec3d, float, uint32_t) = noBoxBound>
+          bool (*EMPTY_BOX)(Vec3d, Vec3d, float, uint32_t) = noBoxBound,
+          bool (*EMPTY_BOX_PART)(Vec3d, Vec3d, float, uint32_t, int, int) = nullptr>
 struct SeededWorld {
   float finest;
   uint32_t seed;
@@ -31,13 +32,20 @@ struct SeededWorld {
   GVDP_HD bool emptyBox(Vec3d lo, Vec3d hi, float voxelSize) const {
     return EMPTY_BOX(lo, hi, voxelSize, seed);
   }
+  GVDP_HD bool emptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize, int part, int parts) const {
+    if constexpr (EMPTY_BOX_PART != nullptr)
+      return EMPTY_BOX_PART(lo, hi, voxelSize, seed, part, parts);
+    else
+      return part != 0 || EMPTY_BOX(lo, hi, voxelSize, seed);
+  }
   GVDP_HD float voxelSize0() const { return finest; }
 };
 
 using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox>;
 using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox>;
 using ForestWorld = SeededWorld<produceForest, forestEmptyBox>;
-using RandomSpheresWorld = SeededWorld<produceRandomSpheres, randomSpheresEmptyBox>;
+using RandomSpheresWorld =
+    SeededWorld<produceRandomSpheres, randomSpheresEmptyBox, randomSpheresEmptyBoxPart>;
 using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres>;
 
 enum class SceneKind : uint8_t { Perlin, Fbm, Forest, RandomSpheres, AlignedSpheres };
@@ -69,6 +77,10 @@ struct BuiltinScene {
   }
   GVDP_HD bool emptyBox(Vec3d lo, Vec3d hi, float voxelSize) const {
     return visit([&](const auto& world) { return world.emptyBox(lo, hi, voxelSize); });
+  }
+  GVDP_HD bool emptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize, int part, int parts) const {
+    return visit(
+        [&](const auto& world) { return world.emptyBoxPart(lo, hi, voxelSize, part, parts); });
   }
   GVDP_HD float voxelSize0() const { return finest; }
 };

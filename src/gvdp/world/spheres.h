@@ -148,31 +148,37 @@ GVDP_HD GVDP_INLINE VoxelSample produceRandomSpheres(Vec3d p, float voxelSize, u
 // while the margin fits in a cell (produceRandomSpheres: every sphere at least the margin away;
 // beyond, flags keep the cell-border bound and bricks are never empty): the box is clear when
 // no sphere of the cells that it and its margin overlap comes within the margin of it, at most
-// SPHERE_BOX_CELLS cells looked at. SPHERE_SLACK covers the float distances of the flags.
+// SPHERE_BOX_CELLS cells looked at. SPHERE_SLACK covers the float distances of the flags. Part
+// `part` of `parts` looks at every parts-th of those cells (world/producer.h: emptyBoxPart).
 constexpr int SPHERE_BOX_CELLS = 125;
 constexpr double SPHERE_SLACK = 1e-3;
 
-GVDP_HD GVDP_INLINE bool randomSpheresEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
+GVDP_HD GVDP_INLINE bool randomSpheresEmptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize,
+                                                   uint32_t seed, int part, int parts) {
   double margin = EMPTY_MARGIN_VOXELS * static_cast<double>(voxelSize);
   if (margin > SPHERE_CELL) return false;
   margin += SPHERE_SLACK;
   auto cellOf = [](double a) { return static_cast<int>(floor(a / SPHERE_CELL)); };
   Vec3i c0{cellOf(lo.x - margin), cellOf(lo.y - margin), cellOf(lo.z - margin)};
   Vec3i c1{cellOf(hi.x + margin), cellOf(hi.y + margin), cellOf(hi.z + margin)};
-  if ((c1.x - c0.x + 1) * (c1.y - c0.y + 1) * (c1.z - c0.z + 1) > SPHERE_BOX_CELLS) return false;
+  int nx = c1.x - c0.x + 1, ny = c1.y - c0.y + 1, cells = nx * ny * (c1.z - c0.z + 1);
+  if (cells > SPHERE_BOX_CELLS) return false;
   auto gap = [](double c, double a, double b) { return c < a ? a - c : c > b ? c - b : 0.0; };
-  for (int z = c0.z; z <= c1.z; ++z)
-    for (int y = c0.y; y <= c1.y; ++y)
-      for (int x = c0.x; x <= c1.x; ++x) {
-        Sphere s = randomSphereOf({x, y, z}, seed);
-        if (!s.exists) continue;
-        double dx = gap(x * SPHERE_CELL + s.centre.x, lo.x, hi.x);
-        double dy = gap(y * SPHERE_CELL + s.centre.y, lo.y, hi.y);
-        double dz = gap(z * SPHERE_CELL + s.centre.z, lo.z, hi.z);
-        double reach = s.radius + margin;
-        if (dx * dx + dy * dy + dz * dz < reach * reach) return false;
-      }
+  for (int k = part; k < cells; k += parts) {
+    int x = c0.x + k % nx, y = c0.y + k / nx % ny, z = c0.z + k / (nx * ny);
+    Sphere s = randomSphereOf({x, y, z}, seed);
+    if (!s.exists) continue;
+    double dx = gap(x * SPHERE_CELL + s.centre.x, lo.x, hi.x);
+    double dy = gap(y * SPHERE_CELL + s.centre.y, lo.y, hi.y);
+    double dz = gap(z * SPHERE_CELL + s.centre.z, lo.z, hi.z);
+    double reach = s.radius + margin;
+    if (dx * dx + dy * dy + dz * dz < reach * reach) return false;
+  }
   return true;
+}
+
+GVDP_HD GVDP_INLINE bool randomSpheresEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
+  return randomSpheresEmptyBoxPart(lo, hi, voxelSize, seed, 0, 1);
 }
 
 GVDP_HD GVDP_INLINE VoxelSample produceAlignedSpheres(Vec3d p, float voxelSize, uint32_t) {

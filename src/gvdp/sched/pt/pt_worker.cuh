@@ -188,7 +188,7 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
   const uint32_t me = workerOf(warp);
   BrickKey key = loadTaskKey(ctx, id);
   bool empty = true;
-  if (!brickBoundedEmpty(producer, key)) {
+  if (!brickBoundedEmpty(WarpScope{lane}, producer, key)) {
     if (lane == 0) {  // no helper is in this production's words: the last one counted its chunk
       handOverKey(&pp.key[me], key);
       handOver(&pp.nonEmpty[me], 0u);
