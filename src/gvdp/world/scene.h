@@ -2,8 +2,8 @@
 // BuiltinScene, the producer the command line instantiates once: one of the five chosen by tag
 // (docs/STYLE.md 4: no virtual calls in device code). perlin and fbm bound boxes by their
 // gradients and curvature (terrain.h), forest by the height of its trees and the distances of its
-// cells' trees and ground, random-spheres by the spheres of the cells a box overlaps;
-// aligned-spheres gives no bound (its per-voxel empty flags make its EMPTY bricks).
+// cells' trees and ground, random-spheres by the spheres of the cells a box overlaps,
+// aligned-spheres by the lattice's sphere nearest the box.
 #pragma once
 
 #include <cstdint>
@@ -46,7 +46,7 @@ using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox>;
 using ForestWorld = SeededWorld<produceForest, forestEmptyBox>;
 using RandomSpheresWorld =
     SeededWorld<produceRandomSpheres, randomSpheresEmptyBox, randomSpheresEmptyBoxPart>;
-using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres>;
+using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres, alignedSpheresEmptyBox>;
 
 enum class SceneKind : uint8_t { Perlin, Fbm, Forest, RandomSpheres, AlignedSpheres };
 constexpr int SCENE_COUNT = 5;

@@ -181,14 +181,45 @@ GVDP_HD GVDP_INLINE bool randomSpheresEmptyBox(Vec3d lo, Vec3d hi, float voxelSi
   return randomSpheresEmptyBoxPart(lo, hi, voxelSize, seed, 0, 1);
 }
 
+// aligned-spheres: a sphere of radius ALIGNED_RADIUS at every cell's centre.
+constexpr float ALIGNED_RADIUS = 2.0f;
+
+// The distance from a point of a cell (local, its offset from the cell's centre) to the nearest
+// sphere of the other cells: the centres are a lattice, so the nearest other centre is one cell
+// over along the axis where the point is farthest from its own centre (moving along another axis
+// instead, or along two, adds (6 - |a|)^2 - a^2 >= 0 for an |a| <= 3 no larger).
+GVDP_HD GVDP_INLINE float alignedOthersDistance(Vec3f a) {
+  Vec3f m = abs(a);
+  if (m.x >= m.y && m.x >= m.z)
+    a.x = SPHERE_CELL - m.x;
+  else if (m.y >= m.z)
+    a.y = SPHERE_CELL - m.y;
+  else
+    a.z = SPHERE_CELL - m.z;
+  return sphereLength(a) - ALIGNED_RADIUS;
+}
+
 GVDP_HD GVDP_INLINE VoxelSample produceAlignedSpheres(Vec3d p, float voxelSize, uint32_t) {
   SphereCell c = sphereCellOf(p);
-  const float RADIUS = 2.0f, HALF = 0.5f * SPHERE_CELL;
+  const float HALF = 0.5f * SPHERE_CELL;
   float t = 0.13f * static_cast<float>((c.cell.x * 3 + c.cell.y * 5 + c.cell.z * 7) & 7);
-  Sphere s{true, {HALF, HALF, HALF}, RADIUS};
-  // Every neighbour's sphere is HALF - RADIUS inside its cell.
-  return produceSphere(c, s, distanceToCellBorder(c.local) + (HALF - RADIUS), voxelSize,
+  Sphere s{true, {HALF, HALF, HALF}, ALIGNED_RADIUS};
+  return produceSphere(c, s, alignedOthersDistance(c.local - s.centre), voxelSize,
                        [&] { return paletteColour(t); });
+}
+
+// aligned-spheres' box bound: the sphere nearest a box has the centre nearest it along each axis
+// apart (a lattice), and the flags hold exact distances (above): the box is clear when that
+// centre's distance less the radius reaches the margin.
+GVDP_HD GVDP_INLINE bool alignedSpheresEmptyBox(Vec3d lo, Vec3d hi, float voxelSize, uint32_t) {
+  auto gap = [](double a, double b) {  // from [a, b] to the nearest centre 6 k + 3
+    double below = 0.5 * SPHERE_CELL + SPHERE_CELL * floor((a - 0.5 * SPHERE_CELL) / SPHERE_CELL);
+    double above = below + SPHERE_CELL;
+    return above <= b ? 0.0 : fmin(a - below, above - b);
+  };
+  double gx = gap(lo.x, hi.x), gy = gap(lo.y, hi.y), gz = gap(lo.z, hi.z);
+  return sqrt(gx * gx + gy * gy + gz * gz) - ALIGNED_RADIUS >=
+         EMPTY_MARGIN_VOXELS * static_cast<double>(voxelSize) + SPHERE_SLACK;
 }
 
 }  // namespace gvdp::detail
