@@ -212,8 +212,12 @@ TEST(RandomSpheres, EmptyFlagIsTheOneAllNeighboursGive) {
           << "level " << level << " at " << p.x << " " << p.y << " " << p.z;
       empties += empty;
     }
-    if (level < 4) EXPECT_GT(empties, 1000) << "level " << level;  // not degenerate
-    if (level >= 1 && level <= 5) EXPECT_GT(nearBorder, 5000) << "level " << level;
+    if (level < 4) {
+      EXPECT_GT(empties, 1000) << "level " << level;  // not degenerate
+    }
+    if (level >= 1 && level <= 5) {
+      EXPECT_GT(nearBorder, 5000) << "level " << level;
+    }
   }
 }
 
