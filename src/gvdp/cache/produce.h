@@ -58,20 +58,24 @@ GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& ke
   return boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0});
 }
 
-// A group tests a bound in up to MAX_BOX_PARTS parts at once (world/producer.h: emptyBoxPart; the
-// answer does not depend on the number): random-spheres' bound walks up to 125 cells a box, and
-// its empty bricks' boxes (up to a hundred bounds each) were their production's longest chain.
-constexpr int MAX_BOX_PARTS = 16;
+// A block tests a bound in BOX_PARTS parts at once, a member each (world/producer.h: emptyBoxPart;
+// the answer does not depend on the number): random-spheres' bound walks up to 125 cells a box,
+// and its empty bricks' boxes (up to a hundred bounds each) kept 6 of sp's 512 threads busy
+// (sp +13-16% with parts, H100). A smaller group tests whole bounds: pt's warps gained nothing
+// from 5 parts a face and lost 1-3% on perlin and forest (BENCHMARKS.md).
+constexpr int BOX_PARTS = 16;
 
-GVDP_HD GVDP_INLINE int boxPartsFor(int members) {
-  return members < MAX_BOX_PARTS ? members : MAX_BOX_PARTS;
+// The parts of a bound tested at once by a group of `members` testing `tests` bounds.
+GVDP_HD GVDP_INLINE int boxPartsFor(int members, int tests) {
+  return members >= tests * BOX_PARTS ? BOX_PARTS : 1;
 }
 
 // brickBoundedEmpty by a group, every member with the answer.
 template <class Scope, class P>
 GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const Scope& group, const P& producer,
                                            const BrickKey& key) {
-  int parts = boxPartsFor(group.size());
+  int parts = boxPartsFor(group.size(), 1);
+  if (parts == 1) return brickBoundedEmpty(producer, key);  // the same answer in every member
   return group.all(group.rank() >= parts ||
                    boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0}, group.rank(), parts));
 }
@@ -111,11 +115,10 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // A box grows in rounds from the brick (empty by its samples' flags or by the bound). In a round
 // each face still growing tries its next reach (the slab it adds) and the faces the producer's
 // bound clears grow together if the slabs they add to the box grown in all of them clear too,
-// else the first of them alone; a face stops at its first refusal. Each test is a face's bound in
-// parts, one member a part (boxPartsFor: a sixth of the group, at most MAX_BOX_PARTS). Testing only
-// what a step adds keeps the bound's boxes small (a bound from the centre of a box loosens with its
-// diagonal), so the box stretches along the empty directions: up and sideways above a terrain,
-// along a cave.
+// else the first of them alone; a face stops at its first refusal. In a block, each test is a
+// face's bound in parts, one member a part (boxPartsFor). Testing only what a step adds keeps the
+// bound's boxes small (a bound from the centre of a box loosens with its diagonal), so the box
+// stretches along the empty directions: up and sideways above a terrain, along a cave.
 //
 // One loop and one call of the producer's bound, which the compiler inlines with the whole
 // world's bound: a step tests the slab of one face (Alone), of the faces grown together
@@ -127,7 +130,7 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
   Step step = Step::Alone;
   EmptyReachCodes codes{}, all{};
   uint32_t growing = 0x3fu, cleared = 0u;  // one bit per face
-  const int parts = boxPartsFor(group.size() / 6 > 0 ? group.size() / 6 : 1);
+  const int parts = boxPartsFor(group.size(), 6);
   for (;;) {
     if (step != Step::Parent && growing == 0u) {  // grown
       if (!publish(key, emptyEntry(codes))) return;
