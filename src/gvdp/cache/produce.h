@@ -58,11 +58,12 @@ GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const P& producer, const BrickKey& ke
   return boxBoundedEmpty(producer, key, {0, 0, 0}, {0, 0, 0});
 }
 
-// A block tests a bound in BOX_PARTS parts at once, a member each (world/producer.h: emptyBoxPart;
-// the answer does not depend on the number): random-spheres' bound walks up to 125 cells a box,
-// and its empty bricks' boxes (up to a hundred bounds each) kept 6 of sp's 512 threads busy
-// (sp +13-16% with parts, H100). A smaller group tests whole bounds: pt's warps gained nothing
-// from 5 parts a face and lost 1-3% on perlin and forest (BENCHMARKS.md).
+// A group with BOX_PARTS members per bound tests each in BOX_PARTS parts at once, a member a part
+// (world/producer.h: emptyBoxPart; the answer does not depend on the number): random-spheres'
+// bound walks up to 125 cells a box, and its empty bricks' boxes (up to a hundred bounds each)
+// kept 6 of sp's 512 threads busy (sp +13-16% with parts, H100). pt's warps thus test a brick's
+// own bound in parts but the six faces' slabs whole: 5 parts a face gained nothing and cost
+// perlin and forest 5-7% (BENCHMARKS.md).
 constexpr int BOX_PARTS = 16;
 
 // The parts of a bound tested at once by a group of `members` testing `tests` bounds.
@@ -116,7 +117,7 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // each face still growing tries its next reach (the slab it adds) and the faces the producer's
 // bound clears grow together if the slabs they add to the box grown in all of them clear too,
 // else the first of them alone; a face stops at its first refusal. In a block, each test is a
-// face's bound in parts, one member a part (boxPartsFor). Testing only what a step adds keeps the
+// face's bound in parts, a member a part (boxPartsFor). Testing only what a step adds keeps the
 // bound's boxes small (a bound from the centre of a box loosens with its diagonal), so the box
 // stretches along the empty directions: up and sideways above a terrain, along a cave.
 //

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "gvdp/world/forest.h"
 #include "gvdp/world/producer.h"
@@ -19,11 +20,23 @@ GVDP_HD GVDP_INLINE bool noBoxBound(Vec3d, Vec3d, float, uint32_t) {
   return false;
 }
 
+// A world's bound in one part: part 0 is the whole (world/producer.h: emptyBoxPart).
+struct BoundInOnePart {};
+
+// random-spheres' bound in parts (world/spheres.h).
+struct RandomSpheresBoundParts {
+  GVDP_HD static bool emptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed, int part,
+                                   int parts) {
+    return randomSpheresEmptyBoxPart(lo, hi, voxelSize, seed, part, parts);
+  }
+};
+
 // A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size,
-// its box bound and, if it has one, the bound in parts (world/producer.h: emptyBoxPart).
+// its box bound and how the bound splits into parts (a type: a comparison of function pointers
+// is no constant expression under GCC's -fsanitize=undefined).
 template <VoxelSample (*FN)(Vec3d, float, uint32_t),
           bool (*EMPTY_BOX)(Vec3d, Vec3d, float, uint32_t) = noBoxBound,
-          bool (*EMPTY_BOX_PART)(Vec3d, Vec3d, float, uint32_t, int, int) = nullptr>
+          class PARTS = BoundInOnePart>
 struct SeededWorld {
   float finest;
   uint32_t seed;
@@ -33,10 +46,10 @@ struct SeededWorld {
     return EMPTY_BOX(lo, hi, voxelSize, seed);
   }
   GVDP_HD bool emptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize, int part, int parts) const {
-    if constexpr (EMPTY_BOX_PART != nullptr)
-      return EMPTY_BOX_PART(lo, hi, voxelSize, seed, part, parts);
-    else
+    if constexpr (std::is_same_v<PARTS, BoundInOnePart>)
       return part != 0 || EMPTY_BOX(lo, hi, voxelSize, seed);
+    else
+      return PARTS::emptyBoxPart(lo, hi, voxelSize, seed, part, parts);
   }
   GVDP_HD float voxelSize0() const { return finest; }
 };
@@ -45,7 +58,7 @@ using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox>;
 using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox>;
 using ForestWorld = SeededWorld<produceForest, forestEmptyBox>;
 using RandomSpheresWorld =
-    SeededWorld<produceRandomSpheres, randomSpheresEmptyBox, randomSpheresEmptyBoxPart>;
+    SeededWorld<produceRandomSpheres, randomSpheresEmptyBox, RandomSpheresBoundParts>;
 using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres, alignedSpheresEmptyBox>;
 
 enum class SceneKind : uint8_t { Perlin, Fbm, Forest, RandomSpheres, AlignedSpheres };
