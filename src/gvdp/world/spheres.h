@@ -64,13 +64,17 @@ struct Sphere {
   float radius;
 };
 
-// The voxel of sphere s (its cell's, of colour albedo(), asked only for a voxel it covers).
-// `others`: the distance to the spheres of other cells, or a value on the same side of the
-// margin (it decides the empty flag only).
+// The distance from c to its cell's sphere s (1e30 when the cell has none).
+GVDP_HD GVDP_INLINE float sphereDistance(const SphereCell& c, const Sphere& s) {
+  return s.exists ? sphereLength(c.local - s.centre) - s.radius : 1e30f;
+}
+
+// The voxel of sphere s (its cell's, at `distance`: sphereDistance; of colour albedo(), asked
+// only for a voxel it covers). `others`: the distance to the spheres of other cells, or a value
+// on the same side of the margin (it decides the empty flag only).
 template <class Albedo>
-GVDP_HD GVDP_INLINE VoxelSample produceSphere(const SphereCell& c, const Sphere& s, float others,
-                                              float voxelSize, Albedo albedo) {
-  float distance = s.exists ? sphereLength(c.local - s.centre) - s.radius : 1e30f;
+GVDP_HD GVDP_INLINE VoxelSample produceSphere(const SphereCell& c, const Sphere& s, float distance,
+                                              float others, float voxelSize, Albedo albedo) {
   bool empty = fminf(distance, others) >= EMPTY_MARGIN_VOXELS * voxelSize;
   if (!s.exists) return {0u, empty};
   float alpha = sphereAlpha(distance, s.radius, voxelSize);
@@ -136,12 +140,11 @@ GVDP_HD GVDP_INLINE VoxelSample produceRandomSpheres(Vec3d p, float voxelSize, u
   SphereCell c = sphereCellOf(p);
   float reach = EMPTY_MARGIN_VOXELS * voxelSize;
   Sphere own = randomSphereOf(c.cell, seed);
-  float others = distanceToCellBorder(c.local);
-  if (others < reach && reach <= SPHERE_CELL) {
-    bool ownWithin = own.exists && sphereLength(c.local - own.centre) - own.radius < reach;
-    others = ownWithin || neighbourSphereWithin(c, reach, seed) ? 0.0f : 1e30f;
-  }
-  return produceSphere(c, own, others, voxelSize, [&] { return randomSphereAlbedo(c.cell, seed); });
+  float distance = sphereDistance(c, own), others = distanceToCellBorder(c.local);
+  if (distance >= reach && others < reach && reach <= SPHERE_CELL)
+    others = neighbourSphereWithin(c, reach, seed) ? 0.0f : 1e30f;
+  return produceSphere(c, own, distance, others, voxelSize,
+                       [&] { return randomSphereAlbedo(c.cell, seed); });
 }
 
 // random-spheres' box bound (the producer's emptyBox, world/producer.h). Its empty flag is exact
@@ -204,8 +207,8 @@ GVDP_HD GVDP_INLINE VoxelSample produceAlignedSpheres(Vec3d p, float voxelSize, 
   const float HALF = 0.5f * SPHERE_CELL;
   float t = 0.13f * static_cast<float>((c.cell.x * 3 + c.cell.y * 5 + c.cell.z * 7) & 7);
   Sphere s{true, {HALF, HALF, HALF}, ALIGNED_RADIUS};
-  return produceSphere(c, s, alignedOthersDistance(c.local - s.centre), voxelSize,
-                       [&] { return paletteColour(t); });
+  return produceSphere(c, s, sphereDistance(c, s), alignedOthersDistance(c.local - s.centre),
+                       voxelSize, [&] { return paletteColour(t); });
 }
 
 // aligned-spheres' box bound: the sphere nearest a box has the centre nearest it along each axis
