@@ -224,9 +224,11 @@ TEST(Cache, EmptyEntriesAreDistinctAndDecode) {
 // EMPTY (all samples flagged empty and transparent), for each scene with a box bound; and the
 // boxes stretch (some face reaches further than the one across from it). Bricks empty by their
 // samples only (near the surface, where the bound does not clear the brick itself) grow boxes
-// too: growth tests only the slabs it adds.
+// too: growth tests only the slabs it adds. A box grows only through faces a ray from the eye
+// can leave it by (produce.h: exitFacesFrom).
 TEST(Cache, EmptyBoxesNameEmptyBricks) {
   std::mt19937 rng(5);
+  const Clipmap clipmap = clipmapOf(frameAt({0.3, 3.0, 0.3}, 0));
   auto emptyBySamples = [](const BuiltinScene& world, BrickKey key) {
     for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
       VoxelSample v = produceBrickSample(world, key, s);
@@ -246,11 +248,16 @@ TEST(Cache, EmptyBoxesNameEmptyBricks) {
       bool bounded = brickBoundedEmpty(world, key);
       if (!bounded && !emptyBySamples(world, key)) continue;
       uint32_t entry = 0;
-      growEmptyBoxes(ThreadScope{}, world, key, [&](const BrickKey&, uint32_t e) {
+      growEmptyBoxes(ThreadScope{}, world, key, clipmap, [&](const BrickKey&, uint32_t e) {
         entry = e;
         return false;
       });
       EmptyReach r = emptyReach(entry);
+      Vec3i fromEye = key.brick - clipmap.eyeBrick(level);
+      ASSERT_TRUE((fromEye.x <= 0 || r.below.x == 0) && (fromEye.x >= 0 || r.above.x == 0) &&
+                  (fromEye.y <= 0 || r.below.y == 0) && (fromEye.y >= 0 || r.above.y == 0) &&
+                  (fromEye.z <= 0 || r.below.z == 0) && (fromEye.z >= 0 || r.above.z == 0))
+          << name << ": a box grew toward the eye, level " << level;
       if (r.below == Vec3i{0, 0, 0} && r.above == Vec3i{0, 0, 0}) continue;
       ++boxes;
       bySamples += !bounded;

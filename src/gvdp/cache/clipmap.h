@@ -20,6 +20,11 @@ struct Clipmap {
   GVDP_HD Vec3i globalBrick(int level, Vec3i localBrick) const {
     return localOriginBrick[level] + localBrick;
   }
+  // The global coordinates of the eye's brick at `level`: the window's centre.
+  GVDP_HD Vec3i eyeBrick(int level) const {
+    int half = width / 2;
+    return windowOrigin[level] + Vec3i{half, half, half};
+  }
   GVDP_HD bool inWindow(int level, Vec3i g) const {
     Vec3i d = g - windowOrigin[level];
     return d.x >= 0 && d.y >= 0 && d.z >= 0 && d.x < width && d.y < width && d.z < width;
@@ -72,7 +77,7 @@ inline Clipmap clipmapOf(const FrameSetup& frame) {
     c.localOriginBrick[level] = origin;
     Vec3i eye = floorToInt(frame.eye / static_cast<float>(brickSize));
     int half = c.width / 2;
-    c.windowOrigin[level] = origin + eye - Vec3i{half, half, half};
+    c.windowOrigin[level] = origin + eye - Vec3i{half, half, half};  // eyeBrick's inverse
     Vec3i o = c.windowOrigin[level];
     c.windowPhase[level] = {floorMod(o.x, c.width), floorMod(o.y, c.width), floorMod(o.z, c.width)};
     c.localToWindow[level] = origin - o;

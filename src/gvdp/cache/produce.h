@@ -92,6 +92,49 @@ GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces
   return c;
 }
 
+// The faces through which a ray from the eye leaves a brick `offset` bricks from the eye's (of
+// the brick's level): along each axis, the face turned away from the eye, or both faces where the
+// two bricks share the axis' slab. A box grows through these only: a ray leaves it through one of
+// them, and growing the others would widen the slabs these add (a bound loosens with its box's
+// diagonal) for no ray's benefit. The eye is the one of the frame that produces the brick; a box
+// used after the eye moved to the other side of a face is left by that face at the brick's
+// border (the ray then takes the next brick's box), never wrongly. Per face, the distance along
+// its axis from the eye in bricks (at least 1/2): a ray's direction is about proportional to
+// these, so the face it leaves a box by first is the one of least (reach + 1) / weight.
+struct ExitFaces {
+  uint32_t faces;  // a bit per face
+  float weight[3];
+
+  // Of `candidates` (a subset of faces), the face a ray from the eye leaves the box `codes` by
+  // first (above), as a one-bit mask.
+  GVDP_HD uint32_t firstLeft(const EmptyReachCodes& codes, uint32_t candidates) const {
+    uint32_t best = 0u;
+    float bestReach = 0.0f, bestWeight = 1.0f;
+    for (int f = 0; f < 6; ++f) {
+      if (!(candidates >> f & 1u)) continue;
+      float reach = static_cast<float>(emptyReachOfCode(codes.face[f]) + 1);
+      float w = weight[f % FACE_ABOVE];
+      if (best == 0u || reach * bestWeight < bestReach * w) {
+        best = 1u << f;
+        bestReach = reach;
+        bestWeight = w;
+      }
+    }
+    return best;
+  }
+};
+
+GVDP_HD GVDP_INLINE ExitFaces exitFacesFrom(Vec3i offset) {
+  ExitFaces e{0u, {}};
+  for (int a = 0; a < FACE_ABOVE; ++a) {
+    int d = a == 0 ? offset.x : a == 1 ? offset.y : offset.z;
+    if (d <= 0) e.faces |= 1u << a;
+    if (d >= 0) e.faces |= 1u << (a + FACE_ABOVE);
+    e.weight[a] = static_cast<float>(d < 0 ? -d : d) + 0.5f;
+  }
+  return e;
+}
+
 // The box, in brick offsets from key.brick (lo, hi inclusive), of the slab that face f adds to
 // a box: the bricks of `outer` beyond its reach through f in `inner` (the codes differ in that
 // face only).
@@ -113,24 +156,26 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // to be marked as well: if the producer's bound clears it, its entry is grown and handed over
 // likewise, and so on up.
 //
-// A box grows in rounds from the brick (empty by its samples' flags or by the bound). In a round
-// each face still growing tries its next reach (the slab it adds) and the faces the producer's
-// bound clears grow together if the slabs they add to the box grown in all of them clear too,
-// else the first of them alone; a face stops at its first refusal. In a block, each test is a
-// face's bound in parts, a member a part (boxPartsFor). Testing only what a step adds keeps the
-// bound's boxes small (a bound from the centre of a box loosens with its diagonal), so the box
-// stretches along the empty directions: up and sideways above a terrain, along a cave.
+// A box grows in rounds from the brick (empty by its samples' flags or by the bound), through the
+// faces rays from the eye leave it by (exitFacesFrom). In a round each face still growing tries
+// its next reach (the slab it adds) and the faces the producer's bound clears grow together if
+// the slabs they add to the box grown in all of them clear too, else the one a ray from the eye
+// would leave the box by first alone; a face stops at its first refusal. In a block, each test
+// is a face's bound in parts, a member a part (boxPartsFor). Testing only what a step adds keeps
+// the bound's boxes small (a bound from the centre of a box loosens with its diagonal), so the
+// box stretches along the empty directions: up and sideways above a terrain, along a cave.
 //
 // One loop and one call of the producer's bound, which the compiler inlines with the whole
 // world's bound: a step tests the slab of one face (Alone), of the faces grown together
 // (Together), or a parent's brick (Parent).
 template <class Scope, class P, class Publish>
 GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, BrickKey key,
-                                        Publish&& publish) {
+                                        const Clipmap& clipmap, Publish&& publish) {
   enum class Step : uint8_t { Alone, Together, Parent };
   Step step = Step::Alone;
   EmptyReachCodes codes{}, all{};
-  uint32_t growing = 0x3fu, cleared = 0u;  // one bit per face
+  ExitFaces exits = exitFacesFrom(key.brick - clipmap.eyeBrick(key.level));
+  uint32_t growing = exits.faces, cleared = 0u;  // one bit per face
   const int parts = boxPartsFor(group.size(), 6);
   for (;;) {
     if (step != Step::Parent && growing == 0u) {  // grown
@@ -157,7 +202,8 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
     if (step == Step::Parent) {
       if (passed == 0u) return;
       codes = {};
-      growing = 0x3fu;
+      exits = exitFacesFrom(key.brick - clipmap.eyeBrick(key.level));
+      growing = exits.faces;
       step = Step::Alone;
       continue;
     }
@@ -170,7 +216,7 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
       }
       take = cleared;
     } else {
-      take = passed == cleared ? cleared : cleared & (~cleared + 1u);
+      take = passed == cleared ? cleared : exits.firstLeft(codes, cleared);
       step = Step::Alone;
     }
     codes = grownCodes(codes, take);
@@ -189,7 +235,7 @@ template <class Scope, class P>
 GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, const CacheView& cache,
                                       BrickKey key) {
   uint32_t index = Clipmap::NOT_IN_WINDOW;  // of an ancestor
-  growEmptyBoxes(group, producer, key, [&](const BrickKey& k, uint32_t entry) {
+  growEmptyBoxes(group, producer, key, cache.clipmap, [&](const BrickKey& k, uint32_t entry) {
     uint32_t marked = 1u;
     if (group.rank() == 0) {
       if (index == Clipmap::NOT_IN_WINDOW)
