@@ -5,10 +5,8 @@
 #   2. compute-sanitizer's four tools on every scheduler, each with a large pool (forest
 #      walkthrough, 20000 bricks), a tiny one (random-spheres backward, 64 bricks: refills and
 #      degraded frames, --tiles off), the large one with --budget-ms 0 ("late": every claim past
-#      the deadline, rays never waiting), forest backward with 600 bricks ("tiled": frames
-#      rendered as tiles, memcheck and racecheck only) and, for sp and pt, the large one with
-#      --march-steps 8 ("yield": rays yield and go on in tasks of yielded rays, memcheck and
-#      racecheck only). memcheck runs on the default build; initcheck, racecheck and synccheck
+#      the deadline, rays never waiting) and forest backward with 600 bricks ("tiled": frames
+#      rendered as tiles, memcheck and racecheck only). memcheck runs on the default build; initcheck, racecheck and synccheck
 #      on the nocdp build: with CDP in the binary they instrument no kernel ("CUDA Dynamic
 #      Parallelism is not supported by the selected tool"), and initcheck then reports every
 #      download as uninitialised since it never saw the kernels' writes;
@@ -45,7 +43,6 @@ sanitize() {
   [ "$pool" = tiled ] && movement=backward
   [ "$sched" != direct ] && args=(--pool-bricks "$(case $pool in tiny) echo 64 ;; tiled) echo 600 ;; *) echo 20000 ;; esac)")
   [ "$pool" = late ] && args+=(--budget-ms 0)
-  [ "$pool" = yield ] && args+=(--march-steps 8)
   # The scheduler's own degraded frames (then the cold retries of tiles/tiled_frame.cpp);
   # "tiled": frames that overflow 600 bricks, rendered as tiles.
   [ "$pool" = tiny ] && args+=(--tiles off)
@@ -78,11 +75,10 @@ echo "== compute-sanitizer (160x100, 2 frames; large pool: forest, tiny: random-
 : >"$out/sanitizer.log"
 for sched in "${schedulers[@]}"; do
   pools=(large tiny late tiled)
-  [ "$sched" = sp ] || [ "$sched" = pt ] && pools+=(yield)
   [ "$sched" = direct ] && pools=(none)
   for pool in "${pools[@]}"; do
     sanitize memcheck "$sched" "$pool" ./carry/gvdp
-    if [ "$pool" = tiled ] || [ "$pool" = yield ]; then
+    if [ "$pool" = tiled ]; then
       [ "$sched" = dp ] && continue
       [ "$sched" = graph ] && graph_loop=host
       sanitize racecheck "$sched" "$pool" ./carry/nocdp/gvdp

@@ -58,17 +58,10 @@ struct RenderFlags {
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
   int lodWidth = 0;
-  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead, prefetch, marchSteps;
+  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead, prefetch;
   std::optional<double> budgetMs;
   float fov = DEFAULT_FOV_DEGREES;
 };
-
-std::string marchStepsHelp() {
-  return "sp, pt: the steps a render task marches a ray before the ray yields, to go on with "
-         "other yielded rays in full warps, 1.." +
-         std::to_string(MAX_MARCH_STEPS) + " (default " + std::to_string(DEFAULT_MARCH_STEPS) +
-         "; 0: never yield); images do not change";
-}
 
 // The flags of `render`; `timeline` takes them too, but its --out is the picture and it renders
 // frames 0..--frame.
@@ -101,7 +94,6 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "motion predicts, marching a ray per N x N pixels, N 0.." +
                       std::to_string(MAX_PREFETCH) + " (default " +
                       std::to_string(DEFAULT_PREFETCH) + "; 0: off)");
-  cmd->add_option("--march-steps", f.marchSteps, marchStepsHelp());
   cmd->add_option("--budget-ms", f.budgetMs,
                   "frame-time budget: past it, rays whose brick is not ready show the nearest "
                   "resident coarser level (produced for the next frames); 0: never wait; default "
@@ -182,9 +174,6 @@ void refuseUnusedFlags(const RenderFlags& f, SchedulerKind kind) {
                    schedulerName(kind));
   GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.prefetch, "--prefetch ", f.prefetch.value_or(0),
                    " is used by scheduler pt only, not by ", schedulerName(kind));
-  GVDP_INPUT_CHECK(usesMarchSteps(kind) || !f.marchSteps, "--march-steps ",
-                   f.marchSteps.value_or(0), " is used by schedulers sp and pt only, not by ",
-                   schedulerName(kind));
   GVDP_INPUT_CHECK(!direct || !f.budgetMs, "--budget-ms ", f.budgetMs.value_or(0.0),
                    " is not used by scheduler direct (it waits for no brick)");
 }
@@ -200,13 +189,6 @@ uint32_t lookaheadFrom(const std::optional<int64_t>& n) {
   if (!n) return DEFAULT_LOOKAHEAD;
   GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_LOOKAHEAD, "bad --lookahead ", *n, " (expected 0..",
                    MAX_LOOKAHEAD, ")");
-  return static_cast<uint32_t>(*n);
-}
-
-uint32_t marchStepsFrom(const std::optional<int64_t>& n) {
-  if (!n) return DEFAULT_MARCH_STEPS;
-  GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_MARCH_STEPS, "bad --march-steps ", *n, " (expected 0..",
-                   MAX_MARCH_STEPS, ")");
   return static_cast<uint32_t>(*n);
 }
 
@@ -251,7 +233,6 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.lookahead = lookaheadFrom(f.lookahead);
   o.scheduler.prefetch = prefetchFrom(f.prefetch);
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
-  o.scheduler.marchSteps = marchStepsFrom(f.marchSteps);
   o.fovDegrees = f.fov;
   o.lodWidth = f.lodWidth;
   o.origin = parseVector(f.origin, "--origin");
@@ -440,7 +421,7 @@ struct BenchFlags {
   std::string mesh;
   float lattice = 0.0f;
   std::optional<int> frames, warmup, width, height;
-  std::optional<int64_t> poolBricks, lookahead, prefetch, marchSteps;
+  std::optional<int64_t> poolBricks, lookahead, prefetch;
   std::optional<double> budgetMs;
   bool scale = false;
 };
@@ -522,7 +503,6 @@ BenchOptions benchOptions(const BenchFlags& f) {
   o.lookahead = lookaheadFrom(f.lookahead);
   o.prefetch = prefetchFrom(f.prefetch);
   o.budgetMs = budgetFrom(f.budgetMs);
-  o.marchSteps = marchStepsFrom(f.marchSteps);
   o.scale = f.scale;
   validate(o);
   return o;
@@ -714,7 +694,6 @@ int run(int argc, char** argv) {
   benchCmd->add_option("--prefetch", bench.prefetch,
                        "pt's idle-time prefetch, a ray per N x N pixels (default " +
                            std::to_string(DEFAULT_PREFETCH) + "; 0: off; see render --prefetch)");
-  benchCmd->add_option("--march-steps", bench.marchSteps, marchStepsHelp());
   benchCmd->add_option("--budget-ms", bench.budgetMs,
                        "frame-time budget (see render --budget-ms; default off)");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");

@@ -34,7 +34,6 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   so.lookahead = o.lookahead;
   so.prefetch = o.prefetch;
   so.budgetMs = o.budgetMs;
-  so.marchSteps = o.marchSteps;
   s.scheduler = resolvedOptions(so);
   return s;
 }
@@ -140,7 +139,6 @@ BenchResults runBench(const BenchOptions& o,
   r.warmup = o.warmup;
   r.budgetMs = o.budgetMs;
   r.prefetch = o.prefetch;
-  r.marchSteps = o.marchSteps;
   int total = static_cast<int>(o.scenes.size() * o.movements.size() * o.schedulers.size());
   int done = 0;
   for (const std::string& scene : o.scenes)
@@ -222,8 +220,7 @@ std::string benchJson(const BenchResults& r) {
                      {"median_ms", p.medianMs},
                      {"avg_fps", p.avgFps}});
   return nlohmann::json{{"device", r.device},     {"backend", r.backend}, {"budget_ms", r.budgetMs},
-                        {"prefetch", r.prefetch}, {"march_steps", r.marchSteps},
-                        {"width", r.width},     {"height", r.height},
+                        {"prefetch", r.prefetch}, {"width", r.width},     {"height", r.height},
                         {"frames", r.frames},     {"warmup", r.warmup},   {"cells", cells},
                         {"scale", scale}}
       .dump(1);

@@ -26,7 +26,6 @@ struct BenchOptions {
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt's
   uint32_t prefetch = DEFAULT_PREFETCH;    // pt's
   double budgetMs = NO_BUDGET;             // every cell's frame-time budget
-  uint32_t marchSteps = DEFAULT_MARCH_STEPS;  // sp's and pt's (0: never yield)
   bool scale = false;  // frame time against resolution for dp on the first scene
 };
 
@@ -59,7 +58,6 @@ struct BenchResults {
   int width, height, frames, warmup;
   double budgetMs;    // NO_BUDGET: exact frames
   uint32_t prefetch;  // pt's (0: off)
-  uint32_t marchSteps;  // sp's and pt's (0: never yield)
   std::vector<BenchCell> cells;
   std::vector<BenchScalePoint> scale;
 };

@@ -30,7 +30,6 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
   if (used.kind == SchedulerKind::Pt) j["prefetch"] = used.prefetch;
   if (used.budgetMs >= 0.0) j["budget_ms"] = used.budgetMs;
-  if (usesMarchSteps(used.kind)) j["march_steps"] = used.marchSteps;
   j["tiles"] = o.tiles.mode == TileOptions::Mode::Auto  ? "auto"
                : o.tiles.mode == TileOptions::Mode::Off ? "off"
                                                         : std::to_string(o.tiles.grid);

@@ -12,10 +12,6 @@
 
 namespace gvdp::detail {
 
-// A march's step budget (render/march.h): the loop iterations (samples, lookups, skips, level
-// changes) after which a ray yields, at least 1; NO_STEP_LIMIT is more than any ray takes.
-constexpr uint32_t NO_STEP_LIMIT = 0xffffffffu;
-
 struct FrameSetup {
   Vec3d localOrigin;  // world position of local (0, 0, 0)
   Vec3f eye;          // camera position relative to localOrigin
@@ -28,9 +24,6 @@ struct FrameSetup {
   int frameIndex;
   bool coldCache;         // start from an empty cache (a degraded frame's retry: tiled_frame.h)
   TimelineView timeline;  // GPU-cores timeline of this frame (records null: off)
-  // The steps a render task marches a ray before the ray yields, to go on later in a task of
-  // other yielded rays (sp, pt: SchedulerOptions::marchSteps); NO_STEP_LIMIT: never.
-  uint32_t marchSteps = NO_STEP_LIMIT;
 
   // The ray of pixel (px, py) of this frame: pixel (tileX + px, tileY + py) of the image.
   GVDP_HD Ray primaryRay(int px, int py) const {

@@ -8,7 +8,6 @@
 #include "gvdp/base/ray.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/empty_box.h"
-#include "gvdp/render/frame.h"
 #include "gvdp/render/lod.h"
 #include "gvdp/render/trilinear.h"
 
@@ -91,10 +90,7 @@ GVDP_HD GVDP_INLINE Vec3f voxelInBrick(Vec3f v, Vec3i brick) {
           v.z - static_cast<float>(brick.z * BRICK_WIDTH)};
 }
 
-// Stopped: on a brick that is not ready (the caller saves the state and relaunches the ray once
-// it is). Yielded: the march's step budget ran out (the caller saves the state and relaunches the
-// ray later, with others that yielded: a warp's long rays go on in full warps, not alone).
-enum class MarchResult : uint8_t { Finished, Stopped, Yielded };
+enum class MarchResult : uint8_t { Finished, Stopped };
 
 // Access provides:
 //   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level
@@ -110,20 +106,13 @@ GVDP_HD GVDP_INLINE bool covers(const BrickLookup& r, int level, Vec3i brick) {
          Vec3i{brick.x >> up, brick.y >> up, brick.z >> up} == r.brick;
 }
 
-// Marches from state `s` until the ray finishes, stops, or has taken `steps` iterations (yields;
-// FrameSetup::marchSteps):
-// `s` then holds where it goes on. Resuming anywhere gives the same image: the resumed march
-// looks its brick up again, and every skip is exact (the sample lattice does not depend on where
-// a skip starts or ends).
 template <class Access>
-GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access,
-                          uint32_t steps = NO_STEP_LIMIT) {
+GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
   BrickLookup resident{BrickState::Resident, 0u, -1, {0, 0, 0}};
   int spanLevel = -1;  // the level `span` describes
   LevelSpan span{};
   Vec3f invD = inverseDirection(ray);
   while (!s.finished(lod)) {
-    if (steps-- == 0) return MarchResult::Yielded;
     if (s.level != spanLevel) {
       span = lod.span(s.level);
       spanLevel = s.level;

@@ -51,17 +51,16 @@ GVDP_HD GVDP_INLINE void storeRayState(RayState* p, const RayState& s) {
 #endif
 }
 
-// Algorithm 1 for one ray from its saved state; true when it stopped on a missing brick or yielded
-// after f.marchSteps steps (its state is saved and it must be relaunched: after production, or in
-// the next pass with the other rays that yielded, compacted into full warps). Used by sp and
-// graph, whose render kernels run while no brick is published: the pool is read-only to them.
+// Algorithm 1 for one ray from its saved state; true when it stopped on a missing brick (its
+// state is saved and it must be relaunched after production). Used by sp and graph, whose
+// render kernels run while no brick is published: the pool is read-only to them.
 template <class Pool>
 GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, const Pool& pool,
                                    RayState* payload, int pixel) {
   Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
   RayState s = payload[pixel];
   CachedAccess<Pool, QueueRequest, PoolReads::ReadOnly> access{cache, pool, f.lod};
-  bool stopped = march(ray, f.lod, s, access, f.marchSteps) != MarchResult::Finished;
+  bool stopped = march(ray, f.lod, s, access) == MarchResult::Stopped;
   access.addCounts();
   payload[pixel] = s;
   return stopped;

@@ -66,7 +66,6 @@ FrameStats Scheduler::render(const FrameSetup& frame, Image* target) {
   prepareFrame(frame);
   FrameSetup f = frame;
   if (timeline_) f.timeline = timeline_->begin();
-  f.marchSteps = marchSteps_;
   clock_->start();
   renderFrame(f, out, stats);
   stats.ms = clock_->stopMs();
@@ -131,7 +130,6 @@ std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer) {
   std::unique_ptr<Scheduler> s = makeBare(options, std::move(producer));
   if (options.timeline) recordTimelineOf(*s, options.backend, true);
-  if (usesMarchSteps(options.kind)) s->setMarchSteps(options.marchSteps);
   return s;
 }
 

@@ -63,12 +63,6 @@ constexpr uint32_t MAX_LOOKAHEAD = 64;
 constexpr uint32_t DEFAULT_PREFETCH = 4;
 constexpr uint32_t MAX_PREFETCH = 64;
 
-// The steps a render task marches a ray before it yields (FrameSetup::marchSteps; sp and pt): a
-// warp's long rays then go on in warps of long rays, compacted, instead of beside lanes whose rays
-// have ended. 0: never yield.
-constexpr uint32_t DEFAULT_MARCH_STEPS = 0;
-constexpr uint32_t MAX_MARCH_STEPS = 1u << 20;
-
 // A frame-time budget (BrickCache::setBudget): NO_BUDGET (exact frames) by default.
 constexpr double NO_BUDGET = -1.0;
 constexpr double MAX_BUDGET_MS = 60000.0;
@@ -82,7 +76,6 @@ struct SchedulerOptions {
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt: missing bricks a stopped ray claims ahead
   uint32_t prefetch = DEFAULT_PREFETCH;    // pt: a prefetch ray per N x N pixels (0: none)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
-  uint32_t marchSteps = DEFAULT_MARCH_STEPS;  // sp, pt: a ray's steps per render task (0: all)
 };
 
 // The budget in nanoseconds for BrickCache::setBudget (negative: none).
@@ -110,11 +103,6 @@ inline uint32_t pendingLaunchesOf(const SchedulerOptions& o) {
   return o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES;
 }
 
-// The schedulers whose render tasks yield rays after SchedulerOptions::marchSteps steps.
-inline bool usesMarchSteps(SchedulerKind k) {
-  return k == SchedulerKind::Sp || k == SchedulerKind::Pt;
-}
-
 // The options with every default made explicit, as the scheduler will use them: the backend's
 // pool (0 for direct, which has none) and dp's pending launches (0 for the others). Resolved
 // once, at the top (the command line, the benchmark), and reported as used (stats.json).
@@ -124,7 +112,6 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
   o.prefetch = o.kind == SchedulerKind::Pt ? o.prefetch : 0;
   o.budgetMs = o.kind == SchedulerKind::Direct ? NO_BUDGET : o.budgetMs;
-  o.marchSteps = usesMarchSteps(o.kind) ? o.marchSteps : 0;
   return o;
 }
 
@@ -132,8 +119,6 @@ class Scheduler {
  public:
   Scheduler(Backend backend, ProducerKernelsPtr producer);
   virtual ~Scheduler();
-  // Every later frame's rays yield after `steps` steps per render task (0: never).
-  void setMarchSteps(uint32_t steps) { marchSteps_ = steps ? steps : NO_STEP_LIMIT; }
   // Records the timeline of the following frames into FrameStats::timeline.
   void recordTimeline(std::unique_ptr<FrameTimeline> t) { timeline_ = std::move(t); }
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
@@ -164,7 +149,6 @@ class Scheduler {
   bool hostImage_ = true;
   std::unique_ptr<FrameClock> clock_;
   std::unique_ptr<FrameTimeline> timeline_;
-  uint32_t marchSteps_ = NO_STEP_LIMIT;
 };
 
 // What every cached scheduler reports of its cache after a frame.

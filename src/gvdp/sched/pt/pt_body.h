@@ -4,8 +4,7 @@
 //
 // Queues (lock-free rings of uint32, one atomic per batch):
 //   tasks    production task ids, served first;
-//   rays     pixels of relaunched rays, taken 32 at a time (full warps, seed 004): rays a
-//            production queued again, and rays that yielded after the frame's marchSteps;
+//   rays     pixels of relaunched rays, taken 32 at a time (full warps, seed 004);
 //   fresh    the screen itself, 8x4-pixel halves of the 8x8 tiles, through a counter.
 // A ray that finds a brick MISSING takes a task id from the `freeIds` ring and claims the brick
 // with a CAS from MISSING to the task's name (ENTRY_PRODUCTION_TASK + id); the winner queues
@@ -367,34 +366,28 @@ struct ParkOne {
   GVDP_HD bool leads(const uint32_t*) const { return true; }
 };
 
-// How a ray's render task ended: finished, parked on a production's wait list, or yielded after
-// the frame's marchSteps (its state saved: the caller queues it on `rays` again, where it goes on
-// in a task of other yielded rays - full warps of long rays, not a warp of mostly ended ones).
-enum class RayEnd : uint8_t { Finished, Parked, Yielded };
-
-// Algorithm 1 for one ray: marches until it finishes, is parked or yields. Park is
+// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false). Park is
 // parkRay, or on the GPU a warp-aggregated version of it (pt_worker.cuh). A ray that stops
 // again - after a relaunch (`relaunched`) or a failed park - first looks ahead
 // (cache/lookahead.h), one ray for all those stopping on the same brick with it (Park::leads):
 // a chain of waits is what the lookahead cuts, and a fresh ray's first stop is mostly on a brick
 // its whole tile shares.
 template <class Pool, class Park = ParkOne>
-GVDP_HD RayEnd ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bool relaunched,
-                        Park park = {}) {
+GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bool relaunched,
+                      Park park = {}) {
   const FrameSetup& f = ctx.frame;
   Ray ray = f.primaryRay(static_cast<int>(pixel) % f.width, static_cast<int>(pixel) / f.width);
   for (bool again = relaunched;; again = true) {
     RayState s = loadRayState(&ctx.payload[pixel]);
     CachedAccess<Pool, StartProduction> access{ctx.cache, pool, f.lod, StartProduction{&ctx}};
-    MarchResult r = march(ray, f.lod, s, access, f.marchSteps);
+    MarchResult r = march(ray, f.lod, s, access);
     access.addCounts();
     storeRayState(&ctx.payload[pixel], s);
-    if (r == MarchResult::Finished) return RayEnd::Finished;
-    if (r == MarchResult::Yielded) return RayEnd::Yielded;
+    if (r == MarchResult::Finished) return true;
     if (again && park.leads(access.stopEntry))
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool, StartAhead::lookahead(ctx),
                                      ctx.lookahead);
-    if (park(ctx, pixel, access.stopEntry)) return RayEnd::Parked;
+    if (park(ctx, pixel, access.stopEntry)) return false;
   }
 }
 

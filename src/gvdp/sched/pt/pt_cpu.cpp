@@ -119,17 +119,13 @@ class PtCpu final : public SpFrameCpu {
     void idle() const { spinPause(); }
     void finish() const {}
 
-    // Runs rays pixel(0 .. n-1) (a pixel < 0 is none) until each finishes, parks or yields (then
-    // queued on `rays` again).
+    // Runs rays pixel(0 .. n-1) (a pixel < 0 is none) until each finishes or parks.
     template <class PixelOf>
     void renderRays(uint32_t n, bool relaunched, PixelOf pixel) const {
       uint32_t finished = 0;
       for (uint32_t i = 0; i < n; ++i) {
         int p = pixel(i);
-        if (p < 0) continue;
-        RayEnd end = ptRunRay(ctx, pool, static_cast<uint32_t>(p), relaunched);
-        if (end == RayEnd::Finished) ++finished;
-        if (end == RayEnd::Yielded) ringPush(ctx.rays, static_cast<uint32_t>(p));
+        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), relaunched)) ++finished;
       }
       if (finished) {
         atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);

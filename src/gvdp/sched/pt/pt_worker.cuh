@@ -96,29 +96,11 @@ struct ParkWarp {
   }
 };
 
-// Queues the rays of the lanes whose `pixel` is not LIST_END on `rays`, one reservation for the
-// warp; returns how many.
-__device__ inline uint32_t queueRaysOfLanes(const PtContext& ctx, uint32_t pixel, int lane) {
-  unsigned m = __ballot_sync(FULL_MASK, pixel != LIST_END);
-  if (m == 0) return 0;
-  uint32_t base = 0;
-  if (lane == 0) base = ringReserve(ctx.rays, static_cast<uint32_t>(__popc(m)));
-  base = __shfl_sync(FULL_MASK, base, 0);
-  if (pixel != LIST_END) ringStore(ctx.rays, base + __popc(m & ((1u << lane) - 1u)), pixel);
-  __syncwarp();
-  if (lane == 0) ringPublish(ctx.rays, static_cast<uint32_t>(__popc(m)));
-  return static_cast<uint32_t>(__popc(m));
-}
-
-// The warp's rays (pixel < 0: none) until each finishes, parks or yields; the yielded ones are
-// queued on `rays` again, to go on in warps of yielded rays.
 __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, int pixel,
                                    bool relaunched, int lane) {
-  RayEnd end = pixel >= 0
-                   ? ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), relaunched, ParkWarp{})
-                   : RayEnd::Parked;
-  queueRaysOfLanes(ctx, end == RayEnd::Yielded ? static_cast<uint32_t>(pixel) : LIST_END, lane);
-  unsigned done = __ballot_sync(FULL_MASK, end == RayEnd::Finished);
+  bool finished =
+      pixel >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), relaunched, ParkWarp{});
+  unsigned done = __ballot_sync(FULL_MASK, finished);
   if (lane == 0) {
     if (done) {
       atomicSub(ctx.counter(PT_LIVE_RAYS), static_cast<uint32_t>(__popc(done)));
@@ -242,7 +224,14 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
       if (lane == k) mine = p;
       p = loadRelaxed32(&ctx.waitNext[p]);
     }
-    relaunched += queueRaysOfLanes(ctx, mine, lane);
+    unsigned m = __ballot_sync(FULL_MASK, mine != LIST_END);
+    uint32_t base = 0;
+    if (lane == 0) base = ringReserve(ctx.rays, static_cast<uint32_t>(__popc(m)));
+    base = __shfl_sync(FULL_MASK, base, 0);
+    if (mine != LIST_END) ringStore(ctx.rays, base + __popc(m & ((1u << lane) - 1u)), mine);
+    __syncwarp();
+    if (lane == 0) ringPublish(ctx.rays, static_cast<uint32_t>(__popc(m)));
+    relaunched += static_cast<uint32_t>(__popc(m));
   }
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
