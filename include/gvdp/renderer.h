@@ -99,7 +99,6 @@ class Renderer {
 
   RendererOptions options_;
   float voxelSize0_;
-  ProducerKernelsPtr producer_;  // the frames' ceilings (render/ceiling.h)
   std::unique_ptr<detail::Scheduler> scheduler_;
   TileProgress tileProgress_;
   int frames_ = 0;

@@ -45,7 +45,6 @@ RendererOptions resolved(RendererOptions o) {
 Renderer::Renderer(const RendererOptions& options, ProducerKernelsPtr producer)
     : options_(resolved(options)),
       voxelSize0_(producer->voxelSize0()),
-      producer_(producer),
       scheduler_(makeScheduler(options_.scheduler, std::move(producer))) {
   GVDP_INPUT_CHECK(voxelSize0_ > 0.0f && voxelSize0_ < 1e6f, "bad producer voxelSize0() ",
                    voxelSize0_, " (expected a positive size below 1e6)");
@@ -60,9 +59,7 @@ FrameSetup frameOf(const RendererOptions& o, float voxelSize0, const CameraPose&
 }
 
 FrameSetup Renderer::frameAt(const CameraPose& pose) const {
-  FrameSetup f = frameOf(options_, voxelSize0_, pose, frames_);
-  producer_->setCeilings(f);
-  return f;
+  return frameOf(options_, voxelSize0_, pose, frames_);
 }
 
 FrameStats Renderer::render(const CameraPose& pose, Image& out) {

@@ -18,11 +18,9 @@
 #if defined(__CUDA_ARCH__)
 #define GVDP_IS_GPU_CODE 1
 #define GVDP_UNROLL _Pragma("unroll")  // device code only: the host compiler warns on it
-#define GVDP_NO_UNROLL _Pragma("unroll 1")
 #else
 #define GVDP_IS_GPU_CODE 0
 #define GVDP_UNROLL
-#define GVDP_NO_UNROLL
 #endif
 
 namespace gvdp::detail {

@@ -36,11 +36,6 @@ struct LevelSpan {
 // Lod::bias's largest value: the far distance 2^20 times nearer.
 constexpr int MAX_FAR_BIAS = 20;
 
-// Lod::ceiling of a level with no known ceiling (float's largest value, so that comparisons stay
-// exact and no infinity needs fast-math's care).
-constexpr float NO_CEILING = 3.402823466e38f;
-static_assert(MAX_LEVELS == 16, "Lod::ceiling lists one NO_CEILING per level");
-
 struct Lod {
   float voxelSize0;  // v0
   float pixelAngle;  // cone spread per unit distance (pixel footprint at t = 1)
@@ -55,13 +50,6 @@ struct Lod {
   // power of two): v(L) / (pixelAngle 2^b) = reach0 2^(L - b), 1 / v(L) = (1 / v0) 2^-L.
   float inverseVoxelSize0 = 1.0f / voxelSize0;
   float reach0 = voxelSize0 / pixelAngle;  // where level 0 ends, bias 0
-  // Per level, a local height above which every sample of the level is zero (nothing of the
-  // world within reach of its trilinear filter; render/ceiling.h), NO_CEILING where none is
-  // known. A ray that rises above the ceiling of every level it has left to cross ends there.
-  float ceiling[MAX_LEVELS] = {NO_CEILING, NO_CEILING, NO_CEILING, NO_CEILING,
-                               NO_CEILING, NO_CEILING, NO_CEILING, NO_CEILING,
-                               NO_CEILING, NO_CEILING, NO_CEILING, NO_CEILING,
-                               NO_CEILING, NO_CEILING, NO_CEILING, NO_CEILING};
 
   // v0 2^L, exact (a product by a power of two): ldexpf's value without its cost.
   GVDP_HD float voxelSize(int level) const { return voxelSize0 * exp2i(level); }
@@ -104,19 +92,6 @@ struct Lod {
   }
   // Farthest distance any sample can reach.
   GVDP_HD float farDistance() const { return levelEnd(levels - 1); }
-  // Whether every sample of the ray from the start of `level` on lies above its level's ceiling:
-  // the ray rises, so within a level its lowest sample is at the level's start. A loop that
-  // stays one (a ray runs it at most once a level): unrolled, or called once more from the
-  // march, it grew pt's worker kernel past what ptxas inlines into it (MeshWorld's kept a call
-  // of its worker loop at 254 registers); not inlined, it made sp's render kernels copy the Lod
-  // to the stack (224 bytes) at 120 registers.
-  GVDP_HD bool aboveCeilings(Vec3f origin, Vec3f direction, int level) const {
-    if (!(direction.y > 0.0f)) return false;
-    GVDP_NO_UNROLL
-    for (int l = level; l < levels; ++l)
-      if (origin.y + direction.y * levelStart(l) <= ceiling[l]) return false;
-    return true;
-  }
 };
 
 // Clipmap width in bricks (paper 3.2): the window of level L must hold every sample of that

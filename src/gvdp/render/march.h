@@ -30,17 +30,12 @@ GVDP_HD GVDP_INLINE RayState initialRayState() {
 }
 
 // Moves the state to the first lattice sample at or after distance t (strictly after the
-// current sample, so a skip always progresses); `span` is the current level's. A skip into a
-// later level ends the ray instead where it rises above the ceilings of every level left
-// (Lod::ceiling: all its samples from there on are zero). Only skips test it (a ray out of the
-// world crosses levels by skips; one call site keeps pt's worker kernel inlinable).
-GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Ray& ray, const Lod& lod,
-                                   const LevelSpan& span, float t) {
+// current sample, so a skip always progresses); `span` is the current level's.
+GVDP_HD GVDP_INLINE void advanceTo(RayState& s, const Lod& lod, const LevelSpan& span, float t) {
   int level = s.level;
   if (t >= span.end) {
     ++level;
     while (level < lod.levels && t >= lod.levelEnd(level)) ++level;
-    if (level < lod.levels && lod.aboveCeilings(ray.o, ray.d, level)) level = lod.levels;
     if (level >= lod.levels) {
       s.level = lod.levels;
       return;
@@ -149,8 +144,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
         bool own = b.level == s.level;
         float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
         float levelEnd = own ? span.end : lod.levelEnd(b.level);
-        advanceTo(s, ray, lod, span,
-                  fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
+        advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
         continue;
       }
       resident = b;
@@ -166,7 +160,7 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
           Vec3f q = ray.o + ray.d * span.sampleT(last);
           if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(span.inVoxels(p), b.brick),
                                                     voxelInBrick(span.inVoxels(q), b.brick)))) {
-            advanceTo(s, ray, lod, span, tEnd);
+            advanceTo(s, lod, span, tEnd);
             continue;
           }
         }

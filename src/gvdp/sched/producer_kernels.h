@@ -23,8 +23,6 @@ class ProducerKernels {
  public:
   virtual ~ProducerKernels() = default;
   virtual float voxelSize0() const = 0;
-  // The frame's level ceilings from the producer's box bound (render/ceiling.h).
-  virtual void setCeilings(FrameSetup& frame) const = 0;
   // CPU backend: Algorithm 2 for one brick on the calling worker (a ThreadScope), and the
   // direct renderer's frame into `pixels` on the thread pool.
   virtual void produceBrick(const CacheView& cache, const BrickPool& pool,

@@ -5,7 +5,6 @@
 
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/produce.h"
-#include "gvdp/render/ceiling.h"
 #include "gvdp/render/direct.h"
 #include "gvdp/sched/importance.h"
 #include "gvdp/sched/producer_kernels.h"
@@ -98,9 +97,6 @@ class ProducerKernelsOf final : public ProducerKernels {
 
   float voxelSize0() const override {
     return p_.voxelSize0();
-  }
-  void setCeilings(FrameSetup& frame) const override {
-    detail::setCeilings(frame, p_);
   }
   void produceBrick(const CacheView& cache, const BrickPool& pool,
                     const BrickKey& key) const override {
