@@ -58,22 +58,10 @@ class CudaProducerKernelsOf final : public CudaProducerKernels {
                            cudaStream_t stream) const override {
     captureGraphProduceKernel(frame, loop, p_, stream);
   }
-  // pt's persistent kernel holds the march, the worker loop and production in one: for a choice of
-  // worlds (WorldChoice) it is instantiated per world rather than around the choice's switch, so
-  // that it holds one world's producer. With all five inlined it was 666 KB of SASS, and ncu put
-  // 39% of its warps' stalls on instruction fetch (random-spheres frame 12, BENCHMARKS.md).
-  int ptWorkerBlocks() const override {
-    if constexpr (WorldChoice<P>)
-      return p_.visit([](const auto& w) { return ptWorkerBlocksOf<std::decay_t<decltype(w)>>(); });
-    else
-      return ptWorkerBlocksOf<P>();
-  }
+  int ptWorkerBlocks() const override { return ptWorkerBlocksOf<P>(); }
   void launchPtFrame(const PtContext& ctx, const BrickPool& pool, int blocks,
                      cudaStream_t stream) const override {
-    if constexpr (WorldChoice<P>)
-      p_.visit([&](const auto& w) { launchPtWorkers(ctx, pool, w, blocks, stream); });
-    else
-      launchPtWorkers(ctx, pool, p_, blocks, stream);
+    launchPtWorkers(ctx, pool, p_, blocks, stream);
   }
 #if GVDP_PRODUCER_DP
   bool hasDp() const override {

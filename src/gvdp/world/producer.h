@@ -34,20 +34,6 @@ concept Producer = std::is_trivially_copyable_v<P> &&
   { p.voxelSize0() } -> std::convertible_to<float>;
 };
 
-// A producer that is one of several worlds chosen at run time (world/scene.h: BuiltinScene):
-// visit(f) calls f with the chosen world. Kernels whose code size matters are instantiated per
-// world (sched/producer_kernels_of.h).
-struct WorldProbe {
-  template <class W>
-  GVDP_HD bool operator()(const W&) const {
-    return true;
-  }
-};
-template <class P>
-concept WorldChoice = requires(const P& p) {
-  { p.visit(WorldProbe{}) } -> std::same_as<bool>;
-};
-
 template <class P>
 concept SplitBoxBound = requires(const P& p, Vec3d x, float voxelSize, int k) {
   { p.emptyBoxPart(x, x, voxelSize, k, k) } -> std::same_as<bool>;

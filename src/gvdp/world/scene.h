@@ -69,12 +69,7 @@ struct BuiltinScene {
   float finest;  // voxel size at level 0, in world units
   uint32_t seed;
 
-  // Calls f with the chosen world (the one switch over the kinds). Host code may visit with a host
-  // function (ProducerKernelsOf launches pt's kernel of the chosen world): the execution-space
-  // check is the call's, not this template's.
-#if defined(__CUDACC__)
-#pragma nv_exec_check_disable
-#endif
+  // Calls f with the chosen world (the one switch over the kinds).
   template <class F>
   GVDP_HD auto visit(F f) const {
     switch (kind) {
