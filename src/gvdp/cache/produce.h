@@ -92,9 +92,9 @@ GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces
   return c;
 }
 
-// The faces through which a ray from the eye leaves a brick `offset` bricks from the eye's (of
-// the brick's level): along each axis, the face turned away from the eye, or both faces where the
-// two bricks share the axis' slab. A box grows through these only: a ray leaves it through one of
+// The faces through which a ray from the eye leaves a brick (by its offset from the eye's brick
+// of its level): along each axis, the face turned away from the eye, or both faces where the two
+// bricks share the axis' slab. A box grows through these only: a ray leaves it through one of
 // them, and growing the others would widen the slabs these add (a bound loosens with its box's
 // diagonal) for no ray's benefit. The eye is the one of the frame that produces the brick; a box
 // used after the eye moved to the other side of a face is left by that face at the brick's
@@ -124,7 +124,9 @@ struct ExitFaces {
   }
 };
 
-GVDP_HD GVDP_INLINE ExitFaces exitFacesFrom(Vec3i offset) {
+// The exit faces of brick `key` for the eye of the frame whose clipmap is `clipmap`.
+GVDP_HD GVDP_INLINE ExitFaces exitFacesFrom(const Clipmap& clipmap, const BrickKey& key) {
+  Vec3i offset = key.brick - clipmap.eyeBrick(key.level);
   ExitFaces e{0u, {}};
   for (int a = 0; a < FACE_ABOVE; ++a) {
     int d = a == 0 ? offset.x : a == 1 ? offset.y : offset.z;
@@ -174,7 +176,7 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
   enum class Step : uint8_t { Alone, Together, Parent };
   Step step = Step::Alone;
   EmptyReachCodes codes{}, all{};
-  ExitFaces exits = exitFacesFrom(key.brick - clipmap.eyeBrick(key.level));
+  ExitFaces exits = exitFacesFrom(clipmap, key);
   uint32_t growing = exits.faces, cleared = 0u;  // one bit per face
   const int parts = boxPartsFor(group.size(), 6);
   for (;;) {
@@ -202,7 +204,7 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
     if (step == Step::Parent) {
       if (passed == 0u) return;
       codes = {};
-      exits = exitFacesFrom(key.brick - clipmap.eyeBrick(key.level));
+      exits = exitFacesFrom(clipmap, key);
       growing = exits.faces;
       step = Step::Alone;
       continue;
