@@ -119,11 +119,14 @@ PrefetchCounts expectPrefetchChangesNoImage(Backend backend, const std::string& 
 
 // On the CPU a worker is idle with rays still live only now and then (two threads; a production
 // is one thread's), so prefetch claims are asserted over two scenes together (perlin, whose
-// chains are short, rarely prefetches here; the test also runs under ThreadSanitizer, in CI).
+// chains are short, rarely prefetches here; the test also runs under ThreadSanitizer, in CI),
+// and over up to three runs of them: one fresh-clone CI run of three saw none in the first (a
+// matter of timing), and a prefetch that never claims fails all three. Every run checks images.
 TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
   uint64_t claims = 0;
-  for (const char* scene : {"forest", "random-spheres"})
-    claims += expectPrefetchChangesNoImage(Backend::Cpu, scene, 96, 64, 8).claims;
+  for (int run = 0; run < 3 && claims == 0; ++run)
+    for (const char* scene : {"forest", "random-spheres"})
+      claims += expectPrefetchChangesNoImage(Backend::Cpu, scene, 96, 64, 8).claims;
   if (ThreadPool::global().size() > 1) {
     EXPECT_GT(claims, 0u);
   }
