@@ -29,14 +29,18 @@ FrameSetup frameAt(Vec3d position, int index) {
 }
 
 // Every resident slot is mapped by exactly one in-window entry and maps back to it; nothing is
-// left in production.
-void expectConsistent(const BrickCacheCpu& c) {
+// left in production. At a frame's start (`settled`) no entry is marked fresh.
+void expectConsistent(const BrickCacheCpu& c, bool settled) {
   const Clipmap& m = c.clipmap();
   std::set<uint32_t> seen;
   for (size_t i = 0; i < c.entries().size(); ++i) {
-    uint32_t e = c.entries()[i];
-    ASSERT_NE(e, ENTRY_IN_PRODUCTION) << "entry " << i;
-    if (!isSlot(e)) continue;
+    uint32_t entry = c.entries()[i];
+    ASSERT_NE(entry, ENTRY_IN_PRODUCTION) << "entry " << i;
+    if (!isSlot(entry)) continue;
+    if (settled) {
+      ASSERT_FALSE(isFresh(entry)) << "entry " << i << " still fresh after the frame's end";
+    }
+    uint32_t e = slotOf(entry);
     ASSERT_LT(e, c.poolBricks());
     ASSERT_TRUE(seen.insert(e).second) << "slot " << e << " mapped twice";
     const BrickKey& k = c.inverse()[e];
@@ -83,9 +87,9 @@ TEST(Cache, InvariantsHoldOverRandomCameraSequences) {
     eye = eye + Vec3d{step(rng), step(rng) * 0.2, step(rng)} * (frame % 7 == 6 ? 30.0 : 1.0);
     FrameSetup f = frameAt(eye, frame);
     cache.beginFrame(f);
-    expectConsistent(cache);
+    expectConsistent(cache, true);
     touchRandomBricks(cache, f, rng, 400);
-    expectConsistent(cache);
+    expectConsistent(cache, false);
     evicted += cache.frameStats().evicted;
     produced += cache.frameStats().produced;
   }
@@ -114,13 +118,82 @@ TEST(Cache, SlabsLeavingTheWindowAreResetAndTheirSlotsFreed) {
   double far = 2.0 * cache.clipmap().width * BRICK_WIDTH * f0.lod.voxelSize(0);
   FrameSetup f1 = frameAt(eye + Vec3d{far, 0.0, 0.0}, 1);
   cache.beginFrame(f1);
-  expectConsistent(cache);
+  expectConsistent(cache, true);
   for (const BrickKey& k : level0) {
     EXPECT_FALSE(cache.clipmap().inWindow(0, k.brick));
     EXPECT_EQ(cache.entries()[cache.clipmap().entryIndex(0, k.brick)], ENTRY_MISSING);
   }
   for (uint32_t s = 0; s < cache.poolBricks(); ++s) EXPECT_NE(cache.inverse()[s].level, 0);
   EXPECT_GE(cache.frameStats().evicted, level0.size());
+}
+
+// A brick published in a frame is marked fresh until the frame ends (brick_key.h: ENTRY_FRESH;
+// readers that run while bricks are published acquire only those), then holds its plain slot:
+// the next beginFrame and a mid-frame refill settle the marks of every slot taken from the free
+// list, and no other entry changes. A lookup reads the same brick through a fresh entry or a
+// settled one, coherent or read-only.
+TEST(Cache, FreshMarksLastTheFrameThatPublished) {
+  BrickCacheCpu cache(4096);
+  Vec3d eye = findScene("perlin").start.position - Vec3d{0.0, 4.0, 0.0};
+  FrameSetup f = frameAt(eye, 0);
+  cache.beginFrame(f);
+  const Clipmap& m = cache.clipmap();
+  Vec3i centre = floorToInt(f.eye / (f.lod.voxelSize(0) * BRICK_WIDTH));
+  std::vector<Vec3i> locals;  // level-0 bricks around the eye, local coordinates
+  for (int z = -2; z <= 2; ++z)
+    for (int y = -2; y <= 2; ++y)
+      for (int x = -2; x <= 2; ++x) locals.push_back(centre + Vec3i{x, y, z});
+  auto keyOf = [&](Vec3i local) { return BrickKey{m.globalBrick(0, local), 0}; };
+  auto entryOf = [&](Vec3i local) { return cache.entries()[m.entryIndex(0, keyOf(local).brick)]; };
+  // The slot a lookup finds, and its sample at the brick's centre, read as READS reads.
+  auto read = [&]<PoolReads READS>(Vec3i local) {
+    CacheView view = cache.view();
+    BrickPool pool = cache.pool();
+    CachedAccess<BrickPool, QueueRequest, READS, false> access{view, pool, f.lod};
+    BrickLookup b = access.find(0, local);
+    EXPECT_EQ(b.state, BrickState::Resident);
+    Vec3f centreVoxel{local.x * 8.0f + 4.0f, local.y * 8.0f + 4.0f, local.z * 8.0f + 4.0f};
+    return std::pair{b.slot, access.sample(b, centreVoxel * f.lod.voxelSize(0)).w};
+  };
+  size_t half = locals.size() / 2;
+  CacheView v = cache.view();
+  for (size_t i = 0; i < half; ++i) produce(cache, v, keyOf(locals[i]));
+  std::map<size_t, std::pair<uint32_t, float>> resident;  // brick -> slot, sample
+  for (size_t i = 0; i < half; ++i) {
+    uint32_t e = entryOf(locals[i]);
+    if (!isSlot(e)) continue;
+    EXPECT_TRUE(isFresh(e)) << "a brick published in the running frame is fresh";
+    auto coherent = read.template operator()<PoolReads::Coherent>(locals[i]);
+    EXPECT_EQ(coherent.first, slotOf(e));
+    EXPECT_EQ(read.template operator()<PoolReads::ReadOnly>(locals[i]), coherent);
+    resident[i] = coherent;
+  }
+  ASSERT_GT(resident.size(), 10u) << "perlin's surface bricks around the eye";
+  std::vector<uint32_t> before = cache.entries();
+
+  // The next frame, same eye: every mark settled, every slot kept, nothing else changed; the
+  // lookups read the same bricks.
+  cache.beginFrame(frameAt(eye, 1));
+  for (size_t i = 0; i < cache.entries().size(); ++i) {
+    uint32_t was = before[i], now = cache.entries()[i];
+    if (isSlot(was)) {
+      EXPECT_EQ(now, slotOf(was)) << "entry " << i;
+    } else {
+      EXPECT_EQ(now, was) << "entry " << i;
+    }
+  }
+  for (const auto& [i, slotSample] : resident) {
+    EXPECT_EQ(read.template operator()<PoolReads::Coherent>(locals[i]), slotSample);
+  }
+  // Bricks published now are fresh, the earlier ones not; a mid-frame refill settles them.
+  v = cache.view();
+  for (size_t i = half; i < locals.size(); ++i) produce(cache, v, keyOf(locals[i]));
+  int fresh = 0;
+  for (size_t i = half; i < locals.size(); ++i) fresh += isFresh(entryOf(locals[i])) ? 1 : 0;
+  EXPECT_GT(fresh, 10);
+  for (const auto& [i, slotSample] : resident) EXPECT_EQ(entryOf(locals[i]), slotSample.first);
+  cache.refill();
+  for (Vec3i local : locals) EXPECT_FALSE(isSlot(entryOf(local)) && isFresh(entryOf(local)));
 }
 
 // A frame's end reads the slots' marks: a brick produced in it and never sampled is
@@ -174,9 +247,10 @@ TEST(Cache, BrickBordersAreSeamless) {
       BrickKey ka{m.globalBrick(level, a), level}, kb{m.globalBrick(level, b), level};
       produce(cache, v, ka);
       produce(cache, v, kb);
-      uint32_t sa = cache.entries()[m.entryIndex(level, ka.brick)];
-      uint32_t sb = cache.entries()[m.entryIndex(level, kb.brick)];
-      if (!isSlot(sa) || !isSlot(sb)) continue;
+      uint32_t ea = cache.entries()[m.entryIndex(level, ka.brick)];
+      uint32_t eb = cache.entries()[m.entryIndex(level, kb.brick)];
+      if (!isSlot(ea) || !isSlot(eb)) continue;
+      uint32_t sa = slotOf(ea), sb = slotOf(eb);
       BrickPool pool = cache.pool();
       for (int k = 0; k < 20; ++k, ++tested) {
         Vec3f p{8.0f * (x + 1), 8.0f * y + u(rng), u(rng)};  // on the face, voxel units
@@ -347,8 +421,9 @@ TEST(Cache, OccupancyCellsAreExact) {
         Vec3i local{x, y, 1};
         BrickKey key{m.globalBrick(level, local), level};
         produce(cache, v, key);
-        uint32_t slot = cache.entries()[m.entryIndex(level, key.brick)];
-        if (!isSlot(slot)) continue;
+        uint32_t entry = cache.entries()[m.entryIndex(level, key.brick)];
+        if (!isSlot(entry)) continue;
+        uint32_t slot = slotOf(entry);
         ++bricks;
         uint64_t occupancy = pool.occupancy[slot];
         const Rgba8* samples = pool.texels + size_t{slot} * BRICK_SAMPLE_COUNT;

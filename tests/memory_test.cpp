@@ -36,7 +36,7 @@ TEST(MemoryEstimate, RenderSequenceRefusesAPoolLargerThanTheHost) {
   std::optional<uint64_t> available = hostAvailableMemoryBytes();
   ASSERT_TRUE(available.has_value());
   uint64_t bricks = *available / (BRICK_SAMPLE_COUNT * sizeof(Rgba8)) + 1;
-  if (bricks >= MAX_SLOTS) GTEST_SKIP() << "the host holds more than the largest pool";
+  if (bricks >= SLOT_LIMIT) GTEST_SKIP() << "the host holds more than the largest pool";
   SequenceOptions o;
   o.width = 32;
   o.height = 20;

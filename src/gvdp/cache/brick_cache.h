@@ -15,6 +15,7 @@
 //   setDeadline(uint64_t* at, uint64_t ns)      *at = the backend's clockNanoseconds() + ns,
 //                                               ordered before the frame's rays
 //   unmapSlots(view, slots, n, timeline)        the head of that list, unmapped (cache_ops.h)
+//   settleFresh(view, n, timeline)              settleFreshSlot(view, i) for i < n (cache_ops.h)
 //   lruBytes(), LRU_NAME                        what the sort holds, for the memory report
 #pragma once
 
@@ -42,7 +43,7 @@ class BrickCache {
         counters_(COUNTER_COUNT),
         inverse_(poolBricks),
         ops_(poolBricks, opsArgs...) {
-    GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < MAX_SLOTS, "bad --pool-bricks ", poolBricks);
+    GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < SLOT_LIMIT, "bad --pool-bricks ", poolBricks);
     texels_ = Buffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
     occupancy_ = Buffer<uint64_t>(poolBricks);
   }
@@ -59,6 +60,7 @@ class BrickCache {
   // everything when the geometry changed or the frame asks for a cold cache), stamp the frame, size
   // the request queue, refill the free slot list.
   void beginFrame(const FrameSetup& frame) {
+    settleFresh();
     ops_.zero(counters_.data(), COUNTER_COUNT);
     if (budgeted())
       ops_.setDeadline(reinterpret_cast<uint64_t*>(counters_.data() + COUNTER_DEADLINE),
@@ -80,20 +82,22 @@ class BrickCache {
     }
     size_t rays = static_cast<size_t>(frame.pixelCount());
     if (requests_.size() < rays) requests_ = Buffer<BrickKey>(rays);
-    refill();
+    takeFreeList();
     refills_ = 0;
   }
 
   // Mid-frame refill (paper 3.3.4) from the slots not used in this frame, least recently used
-  // first; returns the slots obtained.
+  // first; returns the slots obtained. Only between kernels (the fresh marks are settled).
   uint32_t refill() {
-    uint32_t counts[2];
-    freeSlots_ = ops_.sortLru(timestamps_.data(), poolBricks_, frame_, counts, timeline_);
-    freeCount_ = freeListLength(poolBricks_, counts[0], counts[1]);
-    ops_.zero(counters_.data() + COUNTER_FREE_NEXT, 1);
-    ops_.unmapSlots(view(), freeSlots_, freeCount_, timeline_);
-    ++refills_;
-    return freeCount_;
+    settleFresh();
+    return takeFreeList();
+  }
+
+  // The fresh marks (brick_key.h: ENTRY_FRESH) of the bricks published since the free list was
+  // taken, cleared: each took its slot from the list, in order. Between a frame's kernels and the
+  // next's (beginFrame), or before a mid-frame refill replaces the list.
+  void settleFresh() {
+    if (freeCount_ > 0) ops_.settleFresh(view(), freeCount_, timeline_);
   }
 
   CacheView view() {
@@ -146,6 +150,17 @@ class BrickCache {
   const Buffer<Rgba8>& texels() const { return texels_; }
 
  private:
+  // The free slot list from the LRU order, its slots unmapped; the slots obtained.
+  uint32_t takeFreeList() {
+    uint32_t counts[2];
+    freeSlots_ = ops_.sortLru(timestamps_.data(), poolBricks_, frame_, counts, timeline_);
+    freeCount_ = freeListLength(poolBricks_, counts[0], counts[1]);
+    ops_.zero(counters_.data() + COUNTER_FREE_NEXT, 1);
+    ops_.unmapSlots(view(), freeSlots_, freeCount_, timeline_);
+    ++refills_;
+    return freeCount_;
+  }
+
   template <class T>
   static size_t bytesOf(const Buffer<T>& b) {
     return b.size() * sizeof(T);

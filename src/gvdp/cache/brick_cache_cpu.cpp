@@ -48,6 +48,10 @@ void HostCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t fra
   for (uint32_t s = 0; s < n; ++s) countSlotMark(counters, takeUnsampled(&timestamps[s], frame));
 }
 
+void HostCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineView&) {
+  for (uint32_t i = 0; i < n; ++i) settleFreshSlot(v, i);
+}
+
 void HostCacheOps::setDeadline(uint64_t* at, uint64_t ns) {
   *at = clockNanoseconds() + ns;
 }

@@ -28,6 +28,7 @@ class HostCacheOps {
   const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
                           uint32_t counts[2], const TimelineView&);
   static void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters);
+  static void settleFresh(const CacheView& v, uint32_t n, const TimelineView&);
   static void setDeadline(uint64_t* at, uint64_t ns);
   static void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
                          const TimelineView&);

@@ -56,6 +56,11 @@ void CudaCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t fra
   GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
+void CudaCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const {
+  launchSettleFresh(v, n, t, stream_);
+  GVDP_CUDA_CHECK(cudaGetLastError());
+}
+
 void CudaCacheOps::setDeadline(uint64_t* at, uint64_t ns) const {
   launchSetDeadline(at, ns, stream_);
   GVDP_CUDA_CHECK(cudaGetLastError());

@@ -31,6 +31,7 @@ class CudaCacheOps {
   void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
                   const TimelineView& t) const;
   void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters) const;
+  void settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void setDeadline(uint64_t* at, uint64_t ns) const;
   size_t lruBytes() const;
 

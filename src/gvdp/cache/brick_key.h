@@ -14,7 +14,13 @@ namespace gvdp::detail {
 
 constexpr uint32_t ENTRY_MISSING = 0xffffffffu;
 constexpr uint32_t ENTRY_IN_PRODUCTION = 0xfffffffeu;
-constexpr uint32_t MAX_SLOTS = 0x80000000u;  // slots are below every special value
+constexpr uint32_t MAX_SLOTS = 0x80000000u;  // slot entries are below every special value
+// A slot entry published in the running frame carries ENTRY_FRESH: a reader that may run while
+// bricks are published (PoolReads::Coherent, cached_access.h) acquires such an entry before it
+// reads the brick, and reads every other brick without one (docs/DESIGN.md, "Memory model").
+// The frame's end clears the mark (BrickCache::settleFresh), so pool slots stay below it.
+constexpr uint32_t ENTRY_FRESH = 0x40000000u;
+constexpr uint32_t SLOT_LIMIT = ENTRY_FRESH;  // pool slots are below it
 constexpr uint32_t ENTRY_PRODUCTION_TASK = MAX_SLOTS;
 constexpr uint32_t MAX_PRODUCTION_TASKS = 0x70000000u;
 
@@ -50,6 +56,14 @@ GVDP_HD GVDP_INLINE EmptyReach emptyReach(uint32_t entry) {
 
 GVDP_HD GVDP_INLINE bool isSlot(uint32_t entry) {
   return entry < MAX_SLOTS;
+}
+
+// The slot a slot entry (isSlot) holds, and whether it was published in the running frame.
+GVDP_HD GVDP_INLINE uint32_t slotOf(uint32_t entry) {
+  return entry & ~ENTRY_FRESH;
+}
+GVDP_HD GVDP_INLINE bool isFresh(uint32_t entry) {
+  return (entry & ENTRY_FRESH) != 0u;
 }
 
 // The pt task id an entry names, or -1 (resident, EMPTY, MISSING or plain IN_PRODUCTION).

@@ -1,5 +1,5 @@
 // CUDA kernels of the cache maintenance: clipmap slab reset, LRU sort (CUB), unmapping, the
-// frame's deadline.
+// frame's deadline, the fresh marks' settling.
 #include <cub/device/device_radix_sort.cuh>
 
 #include "gvdp/base/clock.h"
@@ -65,6 +65,12 @@ void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
                       const TimelineView& timeline, cudaStream_t stream) {
   parallelForCuda("cache: unmap slots", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { unmapSlot(cache, slots[i]); });
+}
+
+void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+                       cudaStream_t stream) {
+  parallelForCuda("cache: settle fresh entries", stream, n, timeline, TaskKind::Cache,
+                  [=] __device__(uint32_t i) { settleFreshSlot(cache, i); });
 }
 
 }  // namespace gvdp::detail

@@ -28,6 +28,9 @@ void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, ui
                       const TimelineView& timeline, cudaStream_t stream);
 // *at = the device's clockNanoseconds() + ns, when the stream reaches it.
 void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream);
+// settleFreshSlot(cache, i) for i < n (cache_ops.h).
+void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+                       cudaStream_t stream);
 void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
                       const TimelineView& timeline, cudaStream_t stream);
 

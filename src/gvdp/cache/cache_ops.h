@@ -1,6 +1,6 @@
 // Cache maintenance bodies shared by the CPU and CUDA backends: resetting the clipmap slabs that
-// leave a window, unmapping LRU slots through the inverse table, taking a free slot and
-// publishing a produced brick (paper 3.2, 3.3.2, 3.3.4).
+// leave a window, unmapping LRU slots through the inverse table, taking a free slot, publishing
+// a produced brick and settling the frame's fresh entries (paper 3.2, 3.3.2, 3.3.4).
 #pragma once
 
 #include "gvdp/base/atomics.h"
@@ -27,8 +27,8 @@ struct SlabJobs {
 GVDP_HD GVDP_INLINE void resetEntry(const CacheView& c, uint32_t index) {
   uint32_t e = atomicExch32(&c.entries[index], ENTRY_MISSING);
   if (isSlot(e)) {
-    c.inverse[e].level = NO_LEVEL;
-    storeRelaxed32(&c.timestamps[e], 0u);
+    c.inverse[slotOf(e)].level = NO_LEVEL;
+    storeRelaxed32(&c.timestamps[slotOf(e)], 0u);
     atomicAdd32(&c.counters[COUNTER_EVICTED], 1u);
   }
 }
@@ -53,9 +53,22 @@ GVDP_HD GVDP_INLINE void unmapSlot(const CacheView& c, uint32_t slot) {
   BrickKey k = c.inverse[slot];
   if (k.level == NO_LEVEL) return;
   uint32_t index = c.clipmap.entryIndex(k.level, k.brick);
-  if (atomicCas32(&c.entries[index], slot, ENTRY_MISSING) == slot)
+  uint32_t e = loadRelaxed32(&c.entries[index]);
+  if (isSlot(e) && slotOf(e) == slot && atomicCas32(&c.entries[index], e, ENTRY_MISSING) == e)
     atomicAdd32(&c.counters[COUNTER_EVICTED], 1u);
   c.inverse[slot].level = NO_LEVEL;
+}
+
+// Between frames, item i of the free slot list: the slot's entry loses ENTRY_FRESH if the slot
+// was taken (published) in the frame that ended (brick_key.h). Slots are taken from the list in
+// order (takeFreeSlot), so the frame's fresh entries are those of its first COUNTER_FREE_NEXT.
+GVDP_HD GVDP_INLINE void settleFreshSlot(const CacheView& c, uint32_t i) {
+  if (i >= c.freeCount || i >= c.counters[COUNTER_FREE_NEXT]) return;
+  uint32_t slot = c.freeSlots[i];
+  BrickKey k = c.inverse[slot];
+  if (k.level == NO_LEVEL) return;
+  uint32_t* entry = &c.entries[c.clipmap.entryIndex(k.level, k.brick)];
+  if (*entry == (slot | ENTRY_FRESH)) *entry = slot;
 }
 
 // Queues brick g of `level` for production; the caller won the MISSING -> IN_PRODUCTION CAS on
@@ -89,7 +102,7 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, u
   } else {
     c.inverse[found] = key;
     storeRelaxed32(&c.timestamps[found], c.frame | TIMESTAMP_UNSAMPLED);  // until a ray samples it
-    storeRelease32(&c.entries[index], found);
+    storeRelease32(&c.entries[index], found | ENTRY_FRESH);
     atomicAdd32(&c.counters[COUNTER_PRODUCED], 1u);
   }
 }
@@ -101,7 +114,8 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, u
 GVDP_HD GVDP_INLINE void markPrefetched(const CacheView& c, const BrickKey& key) {
   uint32_t e = loadAcquire32(&c.entries[c.clipmap.entryIndex(key.level, key.brick)]);
   if (isSlot(e))
-    atomicCas32(&c.timestamps[e], c.frame | TIMESTAMP_UNSAMPLED, (c.frame + 1) | TIMESTAMP_MARKS);
+    atomicCas32(&c.timestamps[slotOf(e)], c.frame | TIMESTAMP_UNSAMPLED,
+                (c.frame + 1) | TIMESTAMP_MARKS);
 }
 
 }  // namespace gvdp::detail

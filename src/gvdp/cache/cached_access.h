@@ -67,17 +67,20 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
 // READS says whether bricks may be published while the march's kernel runs (docs/DESIGN.md,
 // "Memory model"). Every entry is first read with a relaxed load: an EMPTY, MISSING or
 // in-production entry carries nothing the march reads elsewhere (an EMPTY box is in the entry's
-// bits), so nothing needs ordering after it. Coherent (dp, pt): a slot found is read again with an
-// acquire load before the brick is (resident()), which makes its samples and occupancy, written
-// before the producer's release (publishBrick), visible to the reads after it; the entry of a
-// resident brick does not change while a frame runs (slots are freed between frames), so the
-// acquire reads the slot the relaxed load found, the value the release wrote. The pool is read
-// through L2. (One acquire per lookup, before: an acquire at device scope also invalidates the
-// SM's L1, and most lookups find EMPTY or MISSING entries.) ReadOnly (sp, graph): production runs
-// in kernels of its own, ordered before the render kernel by the stream or the graph, so every
+// bits), so nothing needs ordering after it. Coherent (dp, pt): a slot published in the running
+// frame (ENTRY_FRESH, brick_key.h) is read again with an acquire load before the brick is
+// (resident()), which makes its samples and occupancy, written before the producer's release
+// (publishBrick), visible to the reads after it; the entry of a resident brick does not change
+// while a frame runs (slots are freed between frames), so the acquire reads the value the release
+// wrote. A slot without the mark was published in an earlier frame, whose kernels the stream
+// ordered before this one, and nothing writes its brick while this frame runs: no acquire. The
+// pool is read with plain loads (through L1): ordered by the acquire or by the kernel boundary.
+// (An acquire at device scope also invalidates the SM's L1: one per lookup, then one per resident
+// lookup, cost pt's march 5-25% of its floor, H100.) ReadOnly (sp, graph): production runs in
+// kernels of its own, ordered before the render kernel by the stream or the graph, so every
 // brick the kernel can find resident was published before it began; the only entry writes during
 // the kernel are claims (MISSING to IN_PRODUCTION), which publish nothing. No acquire then, and
-// the pool, read-only for the kernel's life, is read through L1.
+// the pool, read-only for the kernel's life, is read through the non-coherent path.
 template <class Pool, class OnMiss = QueueRequest, PoolReads READS = PoolReads::Coherent,
           bool TOUCH = true>
 struct CachedAccess {
@@ -101,11 +104,12 @@ struct CachedAccess {
     return entry ? loadRelaxed32(entry) : ENTRY_MISSING;
   }
 
-  // A resident brick (`slot`, which `entry` holds), its timestamp set to this frame: on the GPU by
-  // a plain store (the warp's stores to one slot coalesce, and nothing waits on them), on the CPU
-  // only when it changes (a store per lookup would bounce the cache line between threads).
-  GVDP_HD BrickLookup resident(const uint32_t* entry, uint32_t slot, int level, Vec3i brick) const {
-    if constexpr (READS == PoolReads::Coherent) loadAcquire32(entry);  // reads `slot` (above)
+  // A resident brick (`e`, a slot entry `entry` holds), its timestamp set to this frame: on the GPU
+  // by a plain store (the warp's stores to one slot coalesce, and nothing waits on them), on the
+  // CPU only when it changes (a store per lookup would bounce the cache line between threads).
+  GVDP_HD BrickLookup resident(const uint32_t* entry, uint32_t e, int level, Vec3i brick) const {
+    if (READS == PoolReads::Coherent && isFresh(e)) loadAcquire32(entry);  // reads `e` (above)
+    uint32_t slot = slotOf(e);
     if constexpr (TOUCH) {
 #if GVDP_IS_GPU_CODE
       storeRelaxed32(&cache.timestamps[slot], cache.frame);
@@ -114,7 +118,7 @@ struct CachedAccess {
         storeRelaxed32(&cache.timestamps[slot], cache.frame);
 #endif
     }
-    // Written before the entry was published, read after the acquire.
+    // Written before the entry was published: in an earlier frame, or before the release.
     return {BrickState::Resident, slot, level, brick, pool.template loadOccupancy<READS>(slot)};
   }
 

@@ -4,10 +4,11 @@
 //
 // Why not a 3D texture with hardware filtering (paper 3.2): under dp and pt, bricks are written
 // while other grids or blocks of the same frame read the pool, and the texture cache is coherent
-// only at grid boundaries; a plain array read through L2 (ld.global.cg) is coherent, and every
+// only at grid boundaries; a plain array read with plain loads after an acquire of the brick's
+// entry (or of an earlier frame's: cache/cached_access.h) follows the memory model, and every
 // scheduler - and the CPU - then interpolates with the same arithmetic, bit for bit. Where the
 // pool cannot change while the reading kernel runs (sp, graph: PoolReads::ReadOnly), the same
-// array is read through L1 (ld.global.nc).
+// array is read through the non-coherent path (ld.global.nc).
 #pragma once
 
 #include "gvdp/render/trilinear.h"
@@ -72,8 +73,8 @@ GVDP_HD GVDP_INLINE uint64_t occupancyCellsOf(Vec3i i) {
 
 // How a kernel may read the pool (and the entries that lead to it, cache/cached_access.h).
 enum class PoolReads : uint8_t {
-  Coherent,  // bricks are published while the kernel runs (dp, pt): through L2
-  ReadOnly,  // every brick it can find was written before it began (sp, graph): through L1
+  Coherent,  // bricks are published while the kernel runs (dp, pt): plain loads
+  ReadOnly,  // every brick it can find was written before it began (sp, graph): ld.global.nc
 };
 
 struct BrickPool {
@@ -83,13 +84,9 @@ struct BrickPool {
   template <PoolReads READS, class T>
   GVDP_HD static T load(const T* p) {
 #if GVDP_IS_GPU_CODE
-    if constexpr (READS == PoolReads::ReadOnly)
-      return __ldg(p);
-    else
-      return __ldcg(p);
-#else
-    return *p;
+    if constexpr (READS == PoolReads::ReadOnly) return __ldg(p);
 #endif
+    return *p;
   }
 
   // v: voxel coordinates of the brick's level (local); origin = 8 * local brick coordinates.
