@@ -60,6 +60,7 @@ class BrickCache {
   // everything when the geometry changed or the frame asks for a cold cache), stamp the frame, size
   // the request queue, refill the free slot list.
   void beginFrame(const FrameSetup& frame) {
+    timeline_ = frame.timeline;  // the last frame's may be gone
     settleFresh();
     ops_.zero(counters_.data(), COUNTER_COUNT);
     if (budgeted())
@@ -67,7 +68,6 @@ class BrickCache {
                        static_cast<uint64_t>(budgetNs_));
     ClipmapTracker::Update u = tracker_.next(frame);
     clipmap_ = u.clipmap;
-    timeline_ = frame.timeline;
     degraded_ = false;
     ++frame_;
     if (u.fullReset || frame.coldCache) {
