@@ -88,7 +88,9 @@ struct CachedAccess {
   const Pool& pool;
   const Lod& lod;
   OnMiss onMiss{};
-  uint32_t* stopEntry = nullptr;                 // the entry the ray stopped on (dp re-reads it)
+  uint32_t* stopEntry = nullptr;  // the entry the ray stopped on (dp re-reads it)
+  int stopLevel = 0;              // and its brick (local coordinates)
+  Vec3i stopBrick{0, 0, 0};
   uint32_t samples = 0, lookups = 0, skips = 0;  // this march's (addCounts after it)
   uint32_t coarser = 0;     // 1 once a coarser level stood in for a brick that was not ready
   uint32_t lateClaims = 0;  // bricks claimed past the deadline (lateStandIn)
@@ -190,6 +192,8 @@ struct CachedAccess {
     if (late()) return showCoarser(lateStandIn(level, brick, e, entry));
     if (e == ENTRY_MISSING) onMiss(cache, level, cache.clipmap.globalBrick(level, brick), entry);
     stopEntry = entry;
+    stopLevel = level;
+    stopBrick = brick;
     return {BrickState::Stop, 0u, level, brick};
   }
 

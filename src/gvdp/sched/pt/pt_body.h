@@ -257,18 +257,32 @@ GVDP_HD GVDP_INLINE bool startTaskAhead(const PtContext& ctx, int level, Vec3i g
   return startTaskFrom(ctx, ctx.lookaheadIds, ctx.firstLookaheadId, level, g, entry);
 }
 
-// pt's answer to a MISSING brick a ray stops on: a task id from `freeIds`, waited for (one always
-// comes: the capacity argument above), then startTask. Past the frame's deadline: startTaskAhead
-// (those claims are no ray's, and could outnumber `freeIds`).
-struct StartProduction {
+// pt's answer to a MISSING brick a ray stops on, inside the march: noted; the ray claims it after
+// the march (claimStop), once it knows it will wait for it (ptRunRay). Past the frame's deadline:
+// startTaskAhead (those claims are no ray's, and could outnumber `freeIds`).
+struct NoteMiss {
   const PtContext* ctx;
-  GVDP_HD void operator()(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
-    startTask(*ctx, ringTake(ctx->freeIds, atomicAdd32(ctx->freeIds.head, 1u)), level, g, entry);
-  }
+  bool missed = false;
+  GVDP_HD void operator()(const CacheView&, int, Vec3i, uint32_t*) { missed = true; }
   GVDP_HD void ahead(const CacheView&, int level, Vec3i g, uint32_t* entry) const {
     startTaskAhead(*ctx, level, g, entry);
   }
 };
+
+// The brick a march stopped on, global coordinates.
+template <class Access>
+GVDP_HD GVDP_INLINE BrickKey stopKey(const PtContext& ctx, const Access& a) {
+  return {ctx.cache.clipmap.globalBrick(a.stopLevel, a.stopBrick), a.stopLevel};
+}
+
+// The claim of a MISSING brick a ray stopped on and will wait for: a task id from `freeIds`,
+// waited for (one always comes: the capacity argument above), then startTask.
+template <class Access>
+GVDP_HD GVDP_INLINE void claimStop(const PtContext& ctx, const Access& a) {
+  BrickKey k = stopKey(ctx, a);
+  startTask(ctx, ringTake(ctx.freeIds, atomicAdd32(ctx.freeIds.head, 1u)), k.level, k.brick,
+            a.stopEntry);
+}
 
 // The answer of a march no ray waits for (the lookahead's, the prefetch's) to a MISSING brick:
 // startTaskFrom its own ids, counted, at most `left` times, and only while half the frame's free
@@ -366,12 +380,13 @@ struct ParkOne {
   GVDP_HD bool leads(const uint32_t*) const { return true; }
 };
 
-// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false). Park is
-// parkRay, or on the GPU a warp-aggregated version of it (pt_worker.cuh). A ray that stops
-// again - after a relaunch (`relaunched`) or a failed park - first looks ahead
-// (cache/lookahead.h), one ray for all those stopping on the same brick with it (Park::leads):
-// a chain of waits is what the lookahead cuts, and a fresh ray's first stop is mostly on a brick
-// its whole tile shares.
+// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false). The brick it
+// stopped on is claimed after the march if it was MISSING (claimStop: the claim's ring and task
+// code stays out of the march's loop). Park is parkRay, or on the GPU a warp-aggregated version
+// of it (pt_worker.cuh). A ray that stops again - after a relaunch (`relaunched`) or a failed park
+// - first looks ahead (cache/lookahead.h), one ray for all those stopping on the same brick with it
+// (Park::leads): a chain of waits is what the lookahead cuts, and a fresh ray's first stop is
+// mostly on a brick its whole tile shares.
 template <class Pool, class Park = ParkOne>
 GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bool relaunched,
                       Park park = {}) {
@@ -379,11 +394,12 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
   Ray ray = f.primaryRay(static_cast<int>(pixel) % f.width, static_cast<int>(pixel) / f.width);
   for (bool again = relaunched;; again = true) {
     RayState s = loadRayState(&ctx.payload[pixel]);
-    CachedAccess<Pool, StartProduction> access{ctx.cache, pool, f.lod, StartProduction{&ctx}};
+    CachedAccess<Pool, NoteMiss> access{ctx.cache, pool, f.lod, NoteMiss{&ctx}};
     MarchResult r = march(ray, f.lod, s, access);
     access.addCounts();
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) return true;
+    if (access.onMiss.missed) claimStop(ctx, access);
     if (again && park.leads(access.stopEntry))
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool, StartAhead::lookahead(ctx),
                                      ctx.lookahead);
@@ -394,35 +410,43 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
 // PT_BATCH items of the tiled screen, until no ray or task of the frame is left; with none of
-// those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. The Worker
-// supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a warp, which helps
-// an open production, its block's first):
+// those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. Both kinds
+// of rays are run at one call site (render), so that the march is inlined once into the GPU
+// kernel. The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a
+// warp, which helps an open production, its block's first):
 //   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
 //   void produce(uint32_t position)                         the task at a claimed position
-//   void renderQueued(uint32_t position, uint32_t n)        n claimed relaunched rays
+//   Batch queued(uint32_t position, uint32_t n)             n claimed relaunched rays
 //   uint32_t claimFresh()                                   first item, itemCount when none is left
-//   void renderFresh(uint32_t first)                        items first .. first + PT_BATCH - 1
+//   Batch fresh(uint32_t first)                             items first .. first + PT_BATCH - 1
+//   void render(const Batch&)                               runs a batch's rays
 //   bool help()                                             helped a production (false: none)
 //   uint32_t claimPrefetch()                                first, prefetchItems when none
 //   void prefetch(uint32_t first)                           prefetch rays first .. + PT_BATCH - 1
 //   void idle(), finish()                                   nothing to take; the loop is over
 template <class Worker>
-GVDP_HD void ptWorkerLoop(const PtContext& ctx, Worker& w) {
+GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
   while (w.liveWork() != 0) {
     uint32_t position = 0;
+    typename Worker::Batch batch;
     if (w.claim(ctx.tasks, 1, &position)) {
       w.produce(position);
-    } else if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
-      w.renderQueued(position, n);
-    } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
-      w.renderFresh(first);
-    } else if (w.help()) {
-    } else if (uint32_t p = w.claimPrefetch(); p < ctx.prefetchItems) {
-      w.prefetch(p);
-    } else {
-      w.idle();
+      continue;
     }
+    if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
+      batch = w.queued(position, n);
+    } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
+      batch = w.fresh(first);
+    } else {
+      if (w.help()) continue;
+      if (uint32_t p = w.claimPrefetch(); p < ctx.prefetchItems)
+        w.prefetch(p);
+      else
+        w.idle();
+      continue;
+    }
+    w.render(batch);
   }
   w.finish();
 }

@@ -93,20 +93,27 @@ class PtCpu final : public SpFrameCpu {
         atomicAdd32(ctx.counter(PT_PRODUCTIONS), 1u);
       });
     }
-    void renderQueued(uint32_t position, uint32_t n) const {
-      timed(TaskKind::Render, [&] {
-        uint32_t batch[PT_BATCH];
-        for (uint32_t i = 0; i < n; ++i) batch[i] = ringTake(ctx.rays, position + i);
-        renderRays(n, true, [&](uint32_t i) { return static_cast<int>(batch[i]); });
-      });
+    // The pixels of a batch of rays.
+    struct Batch {
+      uint32_t n = 0;
+      bool relaunched = false;
+      int pixels[PT_BATCH];
+    };
+    Batch queued(uint32_t position, uint32_t n) const {
+      Batch b{n, true, {}};
+      for (uint32_t i = 0; i < n; ++i)
+        b.pixels[i] = static_cast<int>(ringTake(ctx.rays, position + i));
+      return b;
     }
     uint32_t claimFresh() const { return claimFreshItems(ctx); }
-    void renderFresh(uint32_t first) const {
-      timed(TaskKind::Render, [&] {
-        uint32_t n = ctx.itemCount - first < PT_BATCH ? ctx.itemCount - first : PT_BATCH;
-        renderRays(n, false,
-                   [&](uint32_t i) { return tiledPixel(ctx.frame, static_cast<int>(first + i)); });
-      });
+    Batch fresh(uint32_t first) const {
+      Batch b{ctx.itemCount - first < PT_BATCH ? ctx.itemCount - first : PT_BATCH, false, {}};
+      for (uint32_t i = 0; i < b.n; ++i)
+        b.pixels[i] = tiledPixel(ctx.frame, static_cast<int>(first + i));
+      return b;
+    }
+    void render(const Batch& b) const {
+      timed(TaskKind::Render, [&] { renderRays(b); });
     }
     static bool help() { return false; }  // a production is one thread's
     uint32_t claimPrefetch() const { return claimPrefetchItems(ctx); }
@@ -119,13 +126,12 @@ class PtCpu final : public SpFrameCpu {
     void idle() const { spinPause(); }
     void finish() const {}
 
-    // Runs rays pixel(0 .. n-1) (a pixel < 0 is none) until each finishes or parks.
-    template <class PixelOf>
-    void renderRays(uint32_t n, bool relaunched, PixelOf pixel) const {
+    // Runs a batch's rays (a pixel < 0 is none) until each finishes or parks.
+    void renderRays(const Batch& b) const {
       uint32_t finished = 0;
-      for (uint32_t i = 0; i < n; ++i) {
-        int p = pixel(i);
-        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), relaunched)) ++finished;
+      for (uint32_t i = 0; i < b.n; ++i) {
+        int p = b.pixels[i];
+        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), b.relaunched)) ++finished;
       }
       if (finished) {
         atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);

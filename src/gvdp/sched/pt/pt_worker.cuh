@@ -293,22 +293,26 @@ struct WarpWorker {
     produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), warp, lane);
     worked();
   }
-  __device__ void renderQueued(uint32_t position, uint32_t n) {
+  // This lane's ray of a batch (-1: none).
+  struct Batch {
+    int pixel = -1;
+    bool relaunched = false;
+  };
+  __device__ Batch queued(uint32_t position, uint32_t n) {
     span.begin(TaskKind::Render);
-    int pixel =
-        lane < static_cast<int>(n) ? static_cast<int>(ringTake(ctx.rays, position + lane)) : -1;
-    renderLanes(ctx, pool, pixel, true, lane);
-    worked();
+    return {lane < static_cast<int>(n) ? static_cast<int>(ringTake(ctx.rays, position + lane)) : -1,
+            true};
   }
   __device__ uint32_t claimFresh() const {
     return fromLane0([&] { return claimFreshItems(ctx); });
   }
-  __device__ void renderFresh(uint32_t first) {
+  __device__ Batch fresh(uint32_t first) {
     span.begin(TaskKind::Render);
     uint32_t item = first + static_cast<uint32_t>(lane);
-    renderLanes(ctx, pool,
-                item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, false,
-                lane);
+    return {item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, false};
+  }
+  __device__ void render(const Batch& b) {
+    renderLanes(ctx, pool, b.pixel, b.relaunched, lane);
     worked();
   }
   __device__ bool help() {
@@ -322,7 +326,7 @@ struct WarpWorker {
   __device__ uint32_t claimPrefetch() const {
     return fromLane0([&] { return claimPrefetchItems(ctx); });
   }
-  __device__ void prefetch(uint32_t first) {
+  __device__ __forceinline__ void prefetch(uint32_t first) {
     span.begin(TaskKind::Prefetch);
     uint32_t item = first + static_cast<uint32_t>(lane);
     if (item < ctx.prefetchItems) prefetchRay(ctx, pool, item);
