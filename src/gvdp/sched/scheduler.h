@@ -52,9 +52,11 @@ struct FrameStats {
 };
 
 // pt's lookahead (cache/lookahead.h): bricks a stopped ray claims beyond the one it waits for.
-// Off by default: on an H100 (BENCHMARKS.md, "Lookahead") 4 bricks made forest, random-spheres
-// and aligned-spheres walkthroughs 3-17% faster but perlin's 14% slower.
-constexpr uint32_t DEFAULT_LOOKAHEAD = 0;
+// 4 by default: on an H100, once pt's march was inlined once (BENCHMARKS.md, session 13), 4
+// bricks gave x1.084 FPS and x1.113 1% lows over 10 cells (forest walkthrough +26%,
+// aligned-spheres +22%; random-spheres forward -1%, its 1% lows lower), over-production <= 8%;
+// 2 gave x1.063 and 8 x1.080. Before, 4 had made perlin 4-14% slower.
+constexpr uint32_t DEFAULT_LOOKAHEAD = 4;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
 
 // pt's idle-time prefetch (pt_body.h): a ray of the predicted next frame per N x N pixels, 0: off.
