@@ -52,11 +52,12 @@ struct FrameStats {
 };
 
 // pt's lookahead (cache/lookahead.h): bricks a stopped ray claims beyond the one it waits for.
-// 4 by default: on an H100, once pt's march was inlined once (BENCHMARKS.md, session 13), 4
-// bricks gave x1.084 FPS and x1.113 1% lows over 10 cells (forest walkthrough +26%,
-// aligned-spheres +22%; random-spheres forward -1%, its 1% lows lower), over-production <= 8%;
-// 2 gave x1.063 and 8 x1.080. Before, 4 had made perlin 4-14% slower.
-constexpr uint32_t DEFAULT_LOOKAHEAD = 4;
+// 2 by default: on an H100, once pt's march was inlined once (BENCHMARKS.md, session 13), the 25
+// cells gave FPS x1.048 / x1.059 / x1.066 and 1% lows x1.117 / x1.128 / x1.144 for 2 / 3 / 4
+// bricks against none (forest walkthrough +19%, aligned-spheres +22%; the spinning walks of
+// perlin and fbm 9-17% slower), with over-production up to 8.8% / 10.2% / 11.8% of the bricks
+// produced: 2 keeps it under the 10% the issue allows. Before, 4 had made perlin 4-14% slower.
+constexpr uint32_t DEFAULT_LOOKAHEAD = 2;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
 
 // pt's idle-time prefetch (pt_body.h): a ray of the predicted next frame per N x N pixels, 0: off.
