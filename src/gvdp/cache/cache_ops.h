@@ -27,8 +27,9 @@ struct SlabJobs {
 GVDP_HD GVDP_INLINE void resetEntry(const CacheView& c, uint32_t index) {
   uint32_t e = atomicExch32(&c.entries[index], ENTRY_MISSING);
   if (isSlot(e)) {
-    c.inverse[slotOf(e)].level = NO_LEVEL;
-    storeRelaxed32(&c.timestamps[slotOf(e)], 0u);
+    uint32_t slot = slotOf(e);
+    c.inverse[slot].level = NO_LEVEL;
+    storeRelaxed32(&c.timestamps[slot], 0u);
     atomicAdd32(&c.counters[COUNTER_EVICTED], 1u);
   }
 }
@@ -48,13 +49,13 @@ GVDP_HD GVDP_INLINE void resetSlabItem(const CacheView& c, const SlabJobs& jobs,
   resetEntry(c, c.clipmap.entryIndex(job.level, g));
 }
 
-// Unmaps the brick a free-list slot still holds (if its entry still points to it).
+// Unmaps the brick a free-list slot still holds (if its entry still points to it). The list is
+// taken after settleFresh, so no entry carries ENTRY_FRESH here.
 GVDP_HD GVDP_INLINE void unmapSlot(const CacheView& c, uint32_t slot) {
   BrickKey k = c.inverse[slot];
   if (k.level == NO_LEVEL) return;
   uint32_t index = c.clipmap.entryIndex(k.level, k.brick);
-  uint32_t e = loadRelaxed32(&c.entries[index]);
-  if (isSlot(e) && slotOf(e) == slot && atomicCas32(&c.entries[index], e, ENTRY_MISSING) == e)
+  if (atomicCas32(&c.entries[index], slot, ENTRY_MISSING) == slot)
     atomicAdd32(&c.counters[COUNTER_EVICTED], 1u);
   c.inverse[slot].level = NO_LEVEL;
 }

@@ -269,19 +269,12 @@ struct NoteMiss {
   }
 };
 
-// The brick a march stopped on, global coordinates.
-template <class Access>
-GVDP_HD GVDP_INLINE BrickKey stopKey(const PtContext& ctx, const Access& a) {
-  return {ctx.cache.clipmap.globalBrick(a.stopLevel, a.stopBrick), a.stopLevel};
-}
-
 // The claim of a MISSING brick a ray stopped on and will wait for: a task id from `freeIds`,
 // waited for (one always comes: the capacity argument above), then startTask.
 template <class Access>
 GVDP_HD GVDP_INLINE void claimStop(const PtContext& ctx, const Access& a) {
-  BrickKey k = stopKey(ctx, a);
-  startTask(ctx, ringTake(ctx.freeIds, atomicAdd32(ctx.freeIds.head, 1u)), k.level, k.brick,
-            a.stopEntry);
+  startTask(ctx, ringTake(ctx.freeIds, atomicAdd32(ctx.freeIds.head, 1u)), a.stopLevel,
+            ctx.cache.clipmap.globalBrick(a.stopLevel, a.stopBrick), a.stopEntry);
 }
 
 // The answer of a march no ray waits for (the lookahead's, the prefetch's) to a MISSING brick:

@@ -326,6 +326,8 @@ struct WarpWorker {
   __device__ uint32_t claimPrefetch() const {
     return fromLane0([&] { return claimPrefetchItems(ctx); });
   }
+  // Forced inline (as ptWorkerLoop): left to ptxas, a larger march than today's once made it a
+  // call of 164 registers from the 80-register kernel, a build error (BENCHMARKS.md, session 13).
   __device__ __forceinline__ void prefetch(uint32_t first) {
     span.begin(TaskKind::Prefetch);
     uint32_t item = first + static_cast<uint32_t>(lane);
