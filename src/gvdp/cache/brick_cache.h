@@ -6,15 +6,16 @@
 //   fillBytes(Buffer<T>&, int byte)             every byte set (memset)
 //   zero(uint32_t* p, size_t n), read(const uint32_t* from, uint32_t* to, size_t n)
 //   resetSlabs(view, slabs, timeline)           the slabs the clipmap windows left (cache_ops.h)
-//   sortLru(timestamps, n, frame, counts, timeline) -> const uint32_t*   the slots by timestamp,
-//                                               oldest first; counts[0] = slots stamped 0,
-//                                               counts[1] = slots stamped before `frame`
-//                                               (lastUsedFrame of the timestamps)
+//   sortLru(timestamps, n, frame, counters, timeline) -> const uint32_t*   the slots by
+//                                               timestamp (lastUsedFrame), oldest first; the free
+//                                               list's length into counters[COUNTER_FREE_COUNT]
+//                                               (freeListLength of the slots stamped 0 and of
+//                                               those stamped before `frame`), on the backend
 //   countUnsampled(timestamps, n, frame, counters)  the slots' marks at the end of `frame`
 //                                               counted and cleared (takeUnsampled, countSlotMark)
 //   setDeadline(uint64_t* at, uint64_t ns)      *at = the backend's clockNanoseconds() + ns,
 //                                               ordered before the frame's rays
-//   unmapSlots(view, slots, n, timeline)        the head of that list, unmapped (cache_ops.h)
+//   unmapSlots(view, n, timeline)               unmapFreeSlot(view, i) for i < n (cache_ops.h)
 //   settleFresh(view, n, timeline)              settleFreshSlot(view, i) for i < n (cache_ops.h)
 //   lruBytes(), LRU_NAME                        what the sort holds, for the memory report
 #pragma once
@@ -90,14 +91,17 @@ class BrickCache {
   // first; returns the slots obtained. Only between kernels (the fresh marks are settled).
   uint32_t refill() {
     settleFresh();
-    return takeFreeList();
+    takeFreeList();
+    uint32_t count = 0;
+    ops_.read(counters_.data() + COUNTER_FREE_COUNT, &count, 1);
+    return count;
   }
 
   // The fresh marks (brick_key.h: ENTRY_FRESH) of the bricks published since the free list was
   // taken, cleared: each took its slot from the list, in order. Between a frame's kernels and the
   // next's (beginFrame), or before a mid-frame refill replaces the list.
   void settleFresh() {
-    if (freeCount_ > 0) ops_.settleFresh(view(), freeCount_, timeline_);
+    if (freeSlots_) ops_.settleFresh(view(), poolBricks_, timeline_);
   }
 
   CacheView view() {
@@ -107,7 +111,6 @@ class BrickCache {
     v.timestamps = timestamps_.data();
     v.inverse = inverse_.data();
     v.freeSlots = freeSlots_;
-    v.freeCount = freeCount_;
     v.requests = requests_.data();
     v.requestCapacity = static_cast<uint32_t>(requests_.size());
     v.counters = counters_.data();
@@ -150,15 +153,14 @@ class BrickCache {
   const Buffer<Rgba8>& texels() const { return texels_; }
 
  private:
-  // The free slot list from the LRU order, its slots unmapped; the slots obtained.
-  uint32_t takeFreeList() {
-    uint32_t counts[2];
-    freeSlots_ = ops_.sortLru(timestamps_.data(), poolBricks_, frame_, counts, timeline_);
-    freeCount_ = freeListLength(poolBricks_, counts[0], counts[1]);
+  // The free slot list from the LRU order, its slots unmapped. Its length stays on the backend
+  // (COUNTER_FREE_COUNT): the kernels that follow read it there, and the host does not wait for
+  // the sort (a frame's start on an H100 waited ~30 us for it, with the GPU idle).
+  void takeFreeList() {
+    freeSlots_ = ops_.sortLru(timestamps_.data(), poolBricks_, frame_, counters_.data(), timeline_);
     ops_.zero(counters_.data() + COUNTER_FREE_NEXT, 1);
-    ops_.unmapSlots(view(), freeSlots_, freeCount_, timeline_);
+    ops_.unmapSlots(view(), poolBricks_, timeline_);
     ++refills_;
-    return freeCount_;
   }
 
   template <class T>
@@ -176,7 +178,7 @@ class BrickCache {
   Ops ops_;
   TimelineView timeline_{};  // the frame's (beginFrame)
   const uint32_t* freeSlots_ = nullptr;
-  uint32_t freeCount_ = 0, frame_ = 0, refills_ = 0;
+  uint32_t frame_ = 0, refills_ = 0;
   uint64_t resident_ = 0;
   int64_t budgetNs_ = -1;
   bool degraded_ = false;

@@ -29,7 +29,7 @@ void HostCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs, const T
 }
 
 const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                                      uint32_t counts[2], const TimelineView&) {
+                                      uint32_t* counters, const TimelineView&) {
   for (uint32_t s = 0; s < n; ++s)
     order_[s] = (static_cast<uint64_t>(lastUsedFrame(timestamps[s])) << 32) | s;
   std::sort(order_.begin(), order_.begin() + n);
@@ -37,8 +37,7 @@ const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, ui
     return static_cast<uint32_t>(std::lower_bound(order_.begin(), order_.begin() + n, stamp << 32) -
                                  order_.begin());
   };
-  counts[0] = below(1);
-  counts[1] = below(frame);
+  counters[COUNTER_FREE_COUNT] = freeListLength(n, below(1), below(frame));
   for (uint32_t i = 0; i < n; ++i) slots_[i] = static_cast<uint32_t>(order_[i]);
   return slots_.data();
 }
@@ -56,10 +55,10 @@ void HostCacheOps::setDeadline(uint64_t* at, uint64_t ns) {
   *at = clockNanoseconds() + ns;
 }
 
-void HostCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
-                              const TimelineView&) {
+void HostCacheOps::unmapSlots(const CacheView& v, uint32_t n, const TimelineView&) {
   parallelFor(
-      n, [&](int64_t i) { unmapSlot(v, slots[i]); }, 256, static_cast<uint8_t>(TaskKind::Cache));
+      n, [&](int64_t i) { unmapFreeSlot(v, static_cast<uint32_t>(i)); }, 4096,
+      static_cast<uint8_t>(TaskKind::Cache));
 }
 
 }  // namespace gvdp::detail

@@ -26,12 +26,11 @@ class HostCacheOps {
   static void read(const uint32_t* from, uint32_t* to, size_t n);
   static void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView&);
   const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                          uint32_t counts[2], const TimelineView&);
+                          uint32_t* counters, const TimelineView&);
   static void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters);
   static void settleFresh(const CacheView& v, uint32_t n, const TimelineView&);
   static void setDeadline(uint64_t* at, uint64_t ns);
-  static void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
-                         const TimelineView&);
+  static void unmapSlots(const CacheView& v, uint32_t n, const TimelineView&);
   size_t lruBytes() const {
     return slots_.size() * sizeof(uint32_t) + order_.size() * sizeof(uint64_t);
   }

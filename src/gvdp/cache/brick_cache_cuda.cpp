@@ -31,7 +31,7 @@ void CudaCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs,
 }
 
 const uint32_t* CudaCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                                      uint32_t counts[2], const TimelineView& t) {
+                                      uint32_t* counters, const TimelineView& t) {
   NvtxRange range("cache: LRU sort");
   launchPrepareLruSort(timestamps, keysIn_.data(), valuesIn_.data(), n, t, stream_);
   int endBit = std::max(1, static_cast<int>(std::bit_width(frame)));
@@ -40,13 +40,12 @@ const uint32_t* CudaCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, ui
   zero(counts_.data(), 2);
   launchCountOlder(keysOut_.data(), n, 1u, counts_.data(), t, stream_);
   launchCountOlder(keysOut_.data(), n, frame, counts_.data() + 1, t, stream_);
-  read(counts_.data(), counts, 2);
+  launchFreeListLength(counts_.data(), n, counters, stream_);
   return valuesOut_.data();
 }
 
-void CudaCacheOps::unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
-                              const TimelineView& t) const {
-  launchUnmapSlots(v, slots, n, t, stream_);
+void CudaCacheOps::unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const {
+  launchUnmapSlots(v, n, t, stream_);
   GVDP_CUDA_CHECK(cudaGetLastError());
 }
 

@@ -27,9 +27,8 @@ class CudaCacheOps {
   void read(const uint32_t* from, uint32_t* to, size_t n) const;  // synchronises
   void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView& t) const;
   const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                          uint32_t counts[2], const TimelineView& t);
-  void unmapSlots(const CacheView& v, const uint32_t* slots, uint32_t n,
-                  const TimelineView& t) const;
+                          uint32_t* counters, const TimelineView& t);
+  void unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters) const;
   void settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void setDeadline(uint64_t* at, uint64_t ns) const;

@@ -1,5 +1,5 @@
-// Host-side bookkeeping shared by the CPU and CUDA caches: the clipmap from frame to frame, the
-// free-list capacity, per-frame statistics and the memory report.
+// Host-side bookkeeping shared by the CPU and CUDA caches: the clipmap from frame to frame,
+// per-frame statistics and the memory report.
 #pragma once
 
 #include <algorithm>
@@ -51,21 +51,6 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.skips = march[MARCH_SKIPS];
   s.coarser = march[MARCH_COARSER];
   return s;
-}
-
-// Paper 3.3.4: a list of 10% of the pool (small pools may free every slot) ...
-inline uint32_t freeListCapacity(uint32_t poolBricks) {
-  uint32_t tenth = poolBricks / 10;
-  uint32_t floor = poolBricks < 256u ? poolBricks : 256u;
-  return tenth > floor ? tenth : floor;
-}
-
-// ... but never fewer than the slots that hold nothing (a cold pool is free as a whole). The
-// list is the head of the slots sorted by timestamp: `unused` slots with timestamp 0 first, then
-// `older` - `unused` slots not used in this frame.
-inline uint32_t freeListLength(uint32_t poolBricks, uint32_t unused, uint32_t older) {
-  uint32_t want = std::max(freeListCapacity(poolBricks), unused);
-  return std::min(want, older);
 }
 
 // The clipmap of consecutive frames: the slabs to reset, or a full reset when the geometry

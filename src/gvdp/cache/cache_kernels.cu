@@ -56,15 +56,23 @@ void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint
                   });
 }
 
+void launchFreeListLength(const uint32_t* counts, uint32_t poolBricks, uint32_t* counters,
+                          cudaStream_t stream) {
+  parallelForCuda("cache: free list length", stream, 1, TimelineView{}, TaskKind::Cache,
+                  [=] __device__(uint32_t) {
+                    counters[COUNTER_FREE_COUNT] = freeListLength(poolBricks, counts[0], counts[1]);
+                  });
+}
+
 void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream) {
   parallelForCuda("cache: deadline", stream, 1, TimelineView{}, TaskKind::Cache,
                   [=] __device__(uint32_t) { *at = clockNanoseconds() + ns; });
 }
 
-void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
-                      const TimelineView& timeline, cudaStream_t stream) {
+void launchUnmapSlots(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+                      cudaStream_t stream) {
   parallelForCuda("cache: unmap slots", stream, n, timeline, TaskKind::Cache,
-                  [=] __device__(uint32_t i) { unmapSlot(cache, slots[i]); });
+                  [=] __device__(uint32_t i) { unmapFreeSlot(cache, i); });
 }
 
 void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& timeline,

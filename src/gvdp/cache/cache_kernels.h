@@ -26,12 +26,16 @@ void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint
 // *count = how many of the first n sorted keys are below frame.
 void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
                       const TimelineView& timeline, cudaStream_t stream);
+// counters[COUNTER_FREE_COUNT] = freeListLength(poolBricks, counts[0], counts[1]) (cache_ops.h).
+void launchFreeListLength(const uint32_t* counts, uint32_t poolBricks, uint32_t* counters,
+                          cudaStream_t stream);
 // *at = the device's clockNanoseconds() + ns, when the stream reaches it.
 void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream);
 // settleFreshSlot(cache, i) for i < n (cache_ops.h).
 void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& timeline,
                        cudaStream_t stream);
-void launchUnmapSlots(const CacheView& cache, const uint32_t* slots, uint32_t n,
-                      const TimelineView& timeline, cudaStream_t stream);
+// unmapFreeSlot(cache, i) for i < n (cache_ops.h).
+void launchUnmapSlots(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+                      cudaStream_t stream);
 
 }  // namespace gvdp::detail

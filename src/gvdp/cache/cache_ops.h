@@ -23,6 +23,22 @@ struct SlabJobs {
   GVDP_HD uint32_t total() const { return offset[jobCount]; }
 };
 
+// Paper 3.3.4: a list of 10% of the pool (small pools may free every slot) ...
+GVDP_HD GVDP_INLINE uint32_t freeListCapacity(uint32_t poolBricks) {
+  uint32_t tenth = poolBricks / 10;
+  uint32_t floor = poolBricks < 256u ? poolBricks : 256u;
+  return tenth > floor ? tenth : floor;
+}
+
+// ... but never fewer than the slots that hold nothing (a cold pool is free as a whole). The
+// list is the head of the slots sorted by timestamp: `unused` slots with timestamp 0 first, then
+// `older` - `unused` slots not used in this frame.
+GVDP_HD GVDP_INLINE uint32_t freeListLength(uint32_t poolBricks, uint32_t unused, uint32_t older) {
+  uint32_t capacity = freeListCapacity(poolBricks);
+  uint32_t want = capacity > unused ? capacity : unused;
+  return want < older ? want : older;
+}
+
 // Frees the slot an entry holds (the slot becomes the least recently used) and resets it.
 GVDP_HD GVDP_INLINE void resetEntry(const CacheView& c, uint32_t index) {
   uint32_t e = atomicExch32(&c.entries[index], ENTRY_MISSING);
@@ -60,11 +76,17 @@ GVDP_HD GVDP_INLINE void unmapSlot(const CacheView& c, uint32_t slot) {
   c.inverse[slot].level = NO_LEVEL;
 }
 
+// Item i of the free slot list unmapped; run for every i below the pool's size (the list's length
+// is on the backend: CacheView::freeCount).
+GVDP_HD GVDP_INLINE void unmapFreeSlot(const CacheView& c, uint32_t i) {
+  if (i < c.freeCount()) unmapSlot(c, c.freeSlots[i]);
+}
+
 // Between frames, item i of the free slot list: the slot's entry loses ENTRY_FRESH if the slot
 // was taken (published) in the frame that ended (brick_key.h). Slots are taken from the list in
 // order (takeFreeSlot), so the frame's fresh entries are those of its first COUNTER_FREE_NEXT.
 GVDP_HD GVDP_INLINE void settleFreshSlot(const CacheView& c, uint32_t i) {
-  if (i >= c.freeCount || i >= c.counters[COUNTER_FREE_NEXT]) return;
+  if (i >= c.freeCount() || i >= c.counters[COUNTER_FREE_NEXT]) return;
   uint32_t slot = c.freeSlots[i];
   BrickKey k = c.inverse[slot];
   if (k.level == NO_LEVEL) return;
@@ -86,7 +108,7 @@ GVDP_HD GVDP_INLINE void requestBrick(const CacheView& c, int level, Vec3i g, ui
 // Algorithm 2, thread 0's part: a slot from the free slot list, or MAX_SLOTS when exhausted.
 GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
   uint32_t i = atomicAdd32(&c.counters[COUNTER_FREE_NEXT], 1u);
-  return i < c.freeCount ? c.freeSlots[i] : MAX_SLOTS;
+  return i < c.freeCount() ? c.freeSlots[i] : MAX_SLOTS;
 }
 
 // Algorithm 2, the end: publish what production found, an empty brick (its EMPTY entry,

@@ -24,7 +24,7 @@ enum MarchCounter : int {
 };
 
 enum CacheCounter : int {
-  COUNTER_FREE_NEXT,     // next index into the free slot list (may run past freeCount)
+  COUNTER_FREE_NEXT,     // next index into the free slot list (may run past its length)
   COUNTER_REQUESTS,      // bricks queued for production (CAS winners)
   COUNTER_PRODUCED,      // bricks written to the pool
   COUNTER_EMPTY,         // bricks found empty
@@ -35,6 +35,9 @@ enum CacheCounter : int {
   COUNTER_DEADLINE = 8,  // 64 bits: the frame's deadline (budgeted)
   COUNTER_PREFETCH_UNUSED = COUNTER_DEADLINE + 2,  // at the frame's end: the last frame's
                                                    // prefetched bricks that no ray of it sampled
+  // The free slot list's length (freeListLength), written on the backend by the LRU sort: the
+  // host never waits for it at a frame's start.
+  COUNTER_FREE_COUNT,
   // The march's 64-bit counters (MarchCounter), in a 128-byte line of their own: every warp's
   // march adds to them, and a load of a word in a line under atomics waits behind them (the
   // degraded test's load of COUNTER_FAILED did, on pt's march: ncu, H100).
@@ -82,12 +85,11 @@ GVDP_HD GVDP_INLINE void countSlotMark(uint32_t* counters, SlotMark m) {
 
 struct CacheView {
   Clipmap clipmap;
-  uint32_t* entries;     // clipmap.entryCount()
-  uint32_t* timestamps;  // per slot: last frame it was sampled (0: never; TIMESTAMP_UNSAMPLED)
-  BrickKey* inverse;     // per slot: the brick it holds, level NO_LEVEL if none
-  const uint32_t* freeSlots;
-  uint32_t freeCount;  // valid entries of freeSlots
-  BrickKey* requests;  // production queue
+  uint32_t* entries;          // clipmap.entryCount()
+  uint32_t* timestamps;       // per slot: last frame it was sampled (0: never; TIMESTAMP_UNSAMPLED)
+  BrickKey* inverse;          // per slot: the brick it holds, level NO_LEVEL if none
+  const uint32_t* freeSlots;  // freeCount() valid entries
+  BrickKey* requests;         // production queue
   uint32_t requestCapacity;
   uint32_t* counters;         // CacheCounter
   uint32_t frame;             // current frame stamp (>= 1)
@@ -95,6 +97,9 @@ struct CacheView {
   uint32_t degradeOnFailure;  // nonzero: a failed production degrades the frame (dp, pt)
   uint32_t budgeted;          // nonzero: the frame has a deadline (a time budget)
   float voxelSize0;
+
+  // Valid entries of freeSlots: written before the kernels that read it (stream order).
+  GVDP_HD uint32_t freeCount() const { return counters[COUNTER_FREE_COUNT]; }
 
   GVDP_HD uint64_t* marchCounters() const {
     return reinterpret_cast<uint64_t*>(counters + COUNTER_MARCH);

@@ -294,7 +294,7 @@ struct StartAhead {
     return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS};
   }
   GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) {
-    if (left == 0 || loadRelaxed32(&cache.counters[COUNTER_FREE_NEXT]) >= cache.freeCount / 2)
+    if (left == 0 || loadRelaxed32(&cache.counters[COUNTER_FREE_NEXT]) >= cache.freeCount() / 2)
       return;
     --left;
     if (startTaskFrom(*ctx, *ids, firstId, level, g, entry)) atomicAdd32(ctx->counter(counted), 1u);
