@@ -86,6 +86,9 @@ TEST(Cli, PoolSizesOutOfRangeAreRefusedBeforeAnyArithmetic) {
   expectInputError("bench" + TINY_BENCH + " --pool-bricks 0" + out, "--pool-bricks 0");
   expectInputError("render --backend cpu --lookahead 65 --scheduler pt" + out,
                    "bad --lookahead 65 (expected 0..64)");
+  expectInputError("render --backend cpu --tail-lookahead 65 --scheduler pt" + out,
+                   "bad --tail-lookahead 65 (expected 0..64)");
+  expectInputError("bench" + TINY_BENCH + " --tail-lookahead -3" + out, "bad --tail-lookahead -3");
   expectInputError("render --backend cpu --lookahead -1 --scheduler pt" + out, "--lookahead -1");
   expectInputError("bench" + TINY_BENCH + " --lookahead 9000000000000" + out,
                    "--lookahead 9000000000000");
@@ -199,6 +202,11 @@ TEST(Cli, FlagsACommandDoesNotUseAreRefused) {
     expectInputError(
         std::string("render --backend cpu --lookahead 4 --scheduler ") + scheduler + TINY + out,
         std::string("--lookahead 4 is used by scheduler pt only, not by ") + scheduler);
+  for (const char* scheduler : {"sp", "dp", "direct"})
+    expectInputError(
+        std::string("render --backend cpu --tail-lookahead 8 --scheduler ") + scheduler + TINY +
+            out,
+        std::string("--tail-lookahead 8 is used by scheduler pt only, not by ") + scheduler);
   for (const char* scheduler : {"sp", "dp", "direct"})
     expectInputError(
         std::string("render --backend cpu --prefetch 4 --scheduler ") + scheduler + TINY + out,

@@ -33,27 +33,29 @@ TEST_P(PtCpuTest, MatchesSpBitForBitOnA20FrameWalkthrough) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, PtCpuTest, ::testing::Range(0, SCENE_COUNT));
 
-SchedulerOptions ptWithLookahead(Backend backend, uint32_t lookahead) {
+SchedulerOptions ptWithLookahead(Backend backend, uint32_t lookahead, uint32_t tail = 0) {
   SchedulerOptions o{backend, SchedulerKind::Pt};
   o.lookahead = lookahead;
+  o.tailLookahead = tail;
   o.prefetch = 0;  // the lookahead's claims alone
   return o;
 }
 
 // The lookahead changes what is produced and when, never the image: pt without it, with the
-// default and with a long one render sp's frames; with it, bricks are claimed ahead of stopped
+// default, with a long one and with a longer one in the frame's tail (--tail-lookahead) render
+// sp's frames; with it, bricks are claimed ahead of stopped
 // rays, and some of them are produced and never sampled (over-production, counted exactly: sp
 // and pt without lookahead sample every brick they produce).
 void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, int w, int h) {
   constexpr int FRAMES = 12;
   Renders sp = renderRun(scene, {backend, SchedulerKind::Sp}, FRAMES, w, h);
-  uint64_t claims[3] = {0, 0, 0}, unsampled[3] = {0, 0, 0}, produced[3] = {0, 0, 0};
-  const uint32_t lookaheads[3] = {0, 4, 16};
-  for (int k = 0; k < 3; ++k) {
-    Renders pt = renderRun(scene, ptWithLookahead(backend, lookaheads[k]), FRAMES, w, h);
+  uint64_t claims[4] = {0, 0, 0, 0}, unsampled[4] = {0, 0, 0, 0}, produced[4] = {0, 0, 0, 0};
+  const uint32_t lookaheads[4] = {0, 4, 16, 2}, tails[4] = {0, 0, 0, 16};
+  for (int k = 0; k < 4; ++k) {
+    Renders pt = renderRun(scene, ptWithLookahead(backend, lookaheads[k], tails[k]), FRAMES, w, h);
     for (int f = 0; f < FRAMES; ++f) {
       EXPECT_EQ(sp.images[f].pixels, pt.images[f].pixels)
-          << scene << " lookahead " << lookaheads[k] << " frame " << f;
+          << scene << " lookahead " << lookaheads[k] << " tail " << tails[k] << " frame " << f;
       EXPECT_EQ(pt.stats[f].unfinishedPixels, 0);
       EXPECT_EQ(sp.stats[f].cache.unsampled, 0u) << "sp samples every brick it produces";
       EXPECT_LE(pt.stats[f].cache.unsampled, pt.stats[f].cache.produced);
@@ -62,16 +64,17 @@ void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, in
       produced[k] += pt.stats[f].cache.produced;
     }
     std::printf(
-        "[ measure ] %s pt lookahead %u, %dx%d x%d: %llu claimed ahead, %llu of %llu "
+        "[ measure ] %s pt lookahead %u (tail %u), %dx%d x%d: %llu claimed ahead, %llu of %llu "
         "produced bricks unsampled\n",
-        scene.c_str(), lookaheads[k], w, h, FRAMES, static_cast<unsigned long long>(claims[k]),
-        static_cast<unsigned long long>(unsampled[k]),
+        scene.c_str(), lookaheads[k], tails[k], w, h, FRAMES,
+        static_cast<unsigned long long>(claims[k]), static_cast<unsigned long long>(unsampled[k]),
         static_cast<unsigned long long>(produced[k]));
   }
   EXPECT_EQ(claims[0], 0u);
   EXPECT_EQ(unsampled[0], 0u) << "without lookahead every produced brick is sampled";
   EXPECT_GT(claims[1], 0u);
   EXPECT_GT(claims[2], claims[1]);
+  EXPECT_GT(claims[3], 0u);
 }
 
 TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {

@@ -32,6 +32,7 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   s.frames = o.warmup + o.frames;
   SchedulerOptions so{o.backend, k, o.poolBricks};
   so.lookahead = o.lookahead;
+  so.tailLookahead = o.tailLookahead;
   so.prefetch = o.prefetch;
   so.budgetMs = o.budgetMs;
   s.scheduler = resolvedOptions(so);

@@ -28,6 +28,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   if (used.poolBricks) j["pool_bricks"] = used.poolBricks;
   if (used.pendingLaunches) j["pending_launches"] = used.pendingLaunches;
   if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
+  if (used.kind == SchedulerKind::Pt) j["tail_lookahead"] = ptTailLookahead(used);
   if (used.kind == SchedulerKind::Pt) j["prefetch"] = used.prefetch;
   if (used.budgetMs >= 0.0) j["budget_ms"] = used.budgetMs;
   j["tiles"] = o.tiles.mode == TileOptions::Mode::Auto  ? "auto"

@@ -77,9 +77,20 @@ struct SchedulerOptions {
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
   uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt: missing bricks a stopped ray claims ahead
+  uint32_t tailLookahead = 0;              // pt: at least this many in a frame's tail (below)
   uint32_t prefetch = DEFAULT_PREFETCH;    // pt: a prefetch ray per N x N pixels (0: none)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
+
+// pt's lookahead in a frame's tail (at most one ray in 32 live: pt_body.h, lookaheadBricks): at
+// least `tailLookahead` bricks, unless the lookahead is off. There the last chains of productions
+// are what is left of the frame. On an H100 (BENCHMARKS.md, session 14), 8 gave the 25 cells FPS
+// x1.042 (forest walkthrough +12%, random-spheres' frame-12 idle 10.4% -> 4.0%, 1% lows >= 75% of
+// the average in 12 cells instead of 9) but over-production 16.6% in fbm's spinning walk, over
+// the 10% issue 14 allows: off (0) by default, `--tail-lookahead 8` to have it.
+inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
+  return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
+}
 
 // The budget in nanoseconds for BrickCache::setBudget (negative: none).
 inline int64_t budgetNsOf(const SchedulerOptions& o) {
@@ -113,6 +124,7 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.poolBricks = o.kind == SchedulerKind::Direct ? 0 : poolBricksOf(o);
   o.pendingLaunches = o.kind == SchedulerKind::Dp ? pendingLaunchesOf(o) : 0;
   o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
+  o.tailLookahead = o.kind == SchedulerKind::Pt ? o.tailLookahead : 0;
   o.prefetch = o.kind == SchedulerKind::Pt ? o.prefetch : 0;
   o.budgetMs = o.kind == SchedulerKind::Direct ? NO_BUDGET : o.budgetMs;
   return o;

@@ -46,6 +46,8 @@ constexpr int PT_BATCH = 32;                     // rays per render task (a warp
 constexpr int PT_COUNTER_STRIDE = 32;            // counters sit 128 bytes apart (no false sharing)
 constexpr uint32_t PT_LOOKAHEAD_IDS = 1u << 15;  // task ids for the lookahead's claims
 constexpr uint32_t PT_PREFETCH_IDS = 1u << 14;   // task ids for the prefetch's claims
+// A frame's tail: at most one ray in PT_TAIL_SHARE live (PtContext::tailLookahead).
+constexpr uint32_t PT_TAIL_SHARE = 32;
 
 enum PtCounter : int {
   PT_RAY_HEAD,
@@ -163,6 +165,8 @@ struct PtContext {
   Ring lookaheadIds;                        // values v: task id firstLookaheadId + v
   uint32_t firstLookaheadId;                // ids below come from freeIds
   uint32_t lookahead;                       // bricks a stopped ray claims ahead of it (0: none)
+  uint32_t tailRays;                        // live rays at most: the frame's tail
+  uint32_t tailLookahead;                   // its lookahead (sched/scheduler.h: ptTailLookahead)
   Ring prefetchIds;                         // values v: task id firstPrefetchId + v
   uint32_t firstPrefetchId;                 // ids from here on are the prefetch's
   FrameSetup prefetchFrame;                 // the predicted next frame (setPrefetch)
@@ -287,8 +291,8 @@ struct StartAhead {
   PtCounter counted;
   uint32_t left;
 
-  static GVDP_HD StartAhead lookahead(const PtContext& c) {
-    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, c.lookahead};
+  static GVDP_HD StartAhead lookahead(const PtContext& c, uint32_t bricks) {
+    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks};
   }
   static GVDP_HD StartAhead prefetch(const PtContext& c) {
     return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS};
@@ -365,6 +369,14 @@ GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uin
   return false;  // closed: the brick was published before the list closed
 }
 
+// How far a ray that stops again looks ahead: `lookahead`, or `tailLookahead` in the frame's
+// tail, where the last chains of productions are what is left of the frame and few rays are left
+// whose work the extra claims could delay.
+GVDP_HD GVDP_INLINE uint32_t lookaheadBricks(const PtContext& ctx) {
+  return loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) > ctx.tailRays ? ctx.lookahead
+                                                                 : ctx.tailLookahead;
+}
+
 struct ParkOne {
   GVDP_HD bool operator()(const PtContext& ctx, uint32_t pixel, const uint32_t* stopEntry) const {
     return parkRay(ctx, pixel, stopEntry);
@@ -393,9 +405,11 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) return true;
     if (access.onMiss.missed) claimStop(ctx, access);
-    if (again && park.leads(access.stopEntry))
-      lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool, StartAhead::lookahead(ctx),
-                                     ctx.lookahead);
+    if (again && park.leads(access.stopEntry)) {
+      uint32_t bricks = lookaheadBricks(ctx);
+      lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
+                                     StartAhead::lookahead(ctx, bricks), bricks);
+    }
     if (park(ctx, pixel, access.stopEntry)) return false;
   }
 }
@@ -506,7 +520,7 @@ struct PtBuffers {
 
 // The frame's context over a backend's buffers.
 inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayState* payload,
-                               const PtBuffers& b, uint32_t lookahead) {
+                               const PtBuffers& b, uint32_t lookahead, uint32_t tailLookahead) {
   PtContext ctx{};
   ctx.frame = f;
   ctx.cache = cache;
@@ -523,6 +537,8 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
   ctx.lookaheadIds = ring(b.lookaheadSlots, PtLayout::lookaheadCapacity(), PT_LOOK_HEAD);
   ctx.firstLookaheadId = b.layout.freeIds();
   ctx.lookahead = lookahead;
+  ctx.tailRays = static_cast<uint32_t>(f.pixelCount() / PT_TAIL_SHARE);
+  ctx.tailLookahead = tailLookahead;
   ctx.prefetchIds = ring(b.prefetchSlots, PtLayout::prefetchCapacity(), PT_PREFETCH_HEAD);
   ctx.firstPrefetchId = b.layout.firstPrefetchId();
   ctx.taskKey = b.taskKey;

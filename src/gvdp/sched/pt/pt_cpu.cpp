@@ -15,7 +15,10 @@ namespace {
 class PtCpu final : public SpFrameCpu {
  public:
   PtCpu(const SchedulerOptions& o, ProducerKernelsPtr p)
-      : SpFrameCpu(o, std::move(p)), lookahead_(o.lookahead), prefetch_(o.prefetch) {}
+      : SpFrameCpu(o, std::move(p)),
+        lookahead_(o.lookahead),
+        tailLookahead_(ptTailLookahead(o)),
+        prefetch_(o.prefetch) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
@@ -67,7 +70,7 @@ class PtCpu final : public SpFrameCpu {
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
-                                  lookahead_);
+                                  lookahead_, tailLookahead_);
     setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
     return ctx;
   }
@@ -148,7 +151,7 @@ class PtCpu final : public SpFrameCpu {
     }
   };
 
-  uint32_t lookahead_, prefetch_;
+  uint32_t lookahead_, tailLookahead_, prefetch_;
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   PtLayout layout_{};
   std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;

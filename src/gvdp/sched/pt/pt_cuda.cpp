@@ -18,6 +18,7 @@ class PtCuda final : public SpFrameCuda {
         prefetchSlots_(PtLayout::prefetchCapacity()),
         blocks_(cudaProducer().ptWorkerBlocks()),
         lookahead_(o.lookahead),
+        tailLookahead_(ptTailLookahead(o)),
         prefetch_(o.prefetch),
         workers_(static_cast<uint32_t>(blocks_) * PT_WORKER_WARPS),
         stage_(size_t{workers_} * BRICK_SAMPLE_COUNT),
@@ -87,7 +88,7 @@ class PtCuda final : public SpFrameCuda {
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
-                                  lookahead_);
+                                  lookahead_, tailLookahead_);
     setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
     uint32_t* words = productionCounters_.data();
     ctx.productions = {stage_.data(),       productionKey_.data(), words,
@@ -101,7 +102,7 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
-  uint32_t lookahead_, prefetch_;
+  uint32_t lookahead_, tailLookahead_, prefetch_;
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   uint32_t workers_;                    // warps of the persistent kernel
   DeviceBuffer<Rgba8> stage_;
