@@ -65,11 +65,14 @@ struct TexturePool {
       return {c.x, c.y, c.z, c.w};
     } else {
       Vec3i s{b.x + 1 - origin.x, b.y + 1 - origin.y, b.z + 1 - origin.z};
-      return trilinear(v, [&](int x, int y, int z) {
-        uchar4 c =
-            tex3D<uchar4>(tex, static_cast<float>(x + s.x) + 0.5f,
-                          static_cast<float>(y + s.y) + 0.5f, static_cast<float>(z + s.z) + 0.5f);
-        return Rgba8{c.x} | Rgba8{c.y} << 8 | Rgba8{c.z} << 16 | Rgba8{c.w} << 24;
+      return trilinear(v, [&](Vec3i i) {
+        return [&, i](int dx, int dy, int dz) {
+          int x = i.x + dx, y = i.y + dy, z = i.z + dz;
+          uchar4 c =
+              tex3D<uchar4>(tex, static_cast<float>(x + s.x) + 0.5f,
+                            static_cast<float>(y + s.y) + 0.5f, static_cast<float>(z + s.z) + 0.5f);
+          return Rgba8{c.x} | Rgba8{c.y} << 8 | Rgba8{c.z} << 16 | Rgba8{c.w} << 24;
+        };
       });
     }
   }

@@ -90,13 +90,19 @@ struct BrickPool {
   }
 
   // v: voxel coordinates of the brick's level (local); origin = 8 * local brick coordinates.
+  // One address for the eight voxels, read at constant offsets from it: the loads carry the
+  // offsets. An address per voxel (64-bit arithmetic each) took 45 of the 213 instructions of a
+  // sample in sp's render kernel; without them, forest's floor fell 8% (BENCHMARKS.md, session 15).
   template <PoolReads READS = PoolReads::Coherent>
   GVDP_HD Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v) const {
     const Rgba8* brick = texels + static_cast<size_t>(slot) * BRICK_SAMPLE_COUNT;
-    return trilinear(v, [&](int x, int y, int z) {
-      return load<READS>(brick +
-                         ((z - origin.z + 1) * BRICK_SAMPLES + (y - origin.y + 1)) * BRICK_SAMPLES +
-                         (x - origin.x + 1));
+    return trilinear(v, [&](Vec3i i) {
+      const Rgba8* first =
+          brick + ((i.z - origin.z + 1) * BRICK_SAMPLES + (i.y - origin.y + 1)) * BRICK_SAMPLES +
+          (i.x - origin.x + 1);
+      return [first](int dx, int dy, int dz) {
+        return load<READS>(first + (dz * BRICK_SAMPLES + dy) * BRICK_SAMPLES + dx);
+      };
     });
   }
 

@@ -25,9 +25,12 @@ struct DirectAccess {
     Vec3f v = p / static_cast<float>(vs);
     Vec3d o = frame.localOrigin;
     float fvs = static_cast<float>(vs);
-    return trilinear(v, [&](int x, int y, int z) {
-      Vec3d centre{o.x + (x + 0.5) * vs, o.y + (y + 0.5) * vs, o.z + (z + 0.5) * vs};
-      return producer.voxel(centre, fvs).rgba;
+    return trilinear(v, [&](Vec3i i) {
+      return [&, i](int dx, int dy, int dz) {
+        int x = i.x + dx, y = i.y + dy, z = i.z + dz;
+        Vec3d centre{o.x + (x + 0.5) * vs, o.y + (y + 0.5) * vs, o.z + (z + 0.5) * vs};
+        return producer.voxel(centre, fvs).rgba;
+      };
     });
   }
 };
