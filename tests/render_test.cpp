@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
+#include <vector>
 
 #include "gvdp/bench/sequence.h"
+#include "gvdp/render/brick_pool.h"
 #include "gvdp/render/shade.h"
 #include "test_util.h"
 
@@ -71,6 +74,61 @@ TEST(Render, ReferenceFrameIsThePinnedPicture) {
   std::printf("[ measure ] forest frame 3 40x24 direct: hash 0x%016llxull\n",
               static_cast<unsigned long long>(h));
   EXPECT_EQ(h, 0x4d286d803bb85650ull);
+}
+
+// A field linear in x, y and z per channel, as RGBA8 voxels (bytes 84..199 for indices 0..9 of
+// a brick with its border): trilinear() reproduces it between voxel centres.
+namespace {
+Rgba8 linearVoxel(int x, int y, int z) {
+  auto byte = [](int v) { return static_cast<Rgba8>(v); };
+  return byte(100 + 9 * x) | byte(100 + 7 * y) << 8 | byte(100 + 11 * z) << 16 |
+         byte(120 + 3 * x + 5 * y - 4 * z) << 24;
+}
+Vec4f linearField(Vec3f v) {  // the field at v (voxel i's centre at i + 1/2)
+  Vec3f u{v.x - 0.5f, v.y - 0.5f, v.z - 0.5f};
+  const float s = 1.0f / 255.0f;
+  return {(100 + 9 * u.x) * s, (100 + 7 * u.y) * s, (100 + 11 * u.z) * s,
+          (120 + 3 * u.x + 5 * u.y - 4 * u.z) * s};
+}
+}  // namespace
+
+// The pool reads the 2x2x2 voxels of a sample from one address (BrickPool::sample): a slot holds
+// brick voxels origin - 1 .. origin + 8 per axis (the border), and every position of the brick
+// samples what trilinear() gives over the voxels at their absolute indices - bit for bit - which
+// is the linear field.
+TEST(Render, PoolSamplesTheBrickAtItsOriginWithItsBorder) {
+  std::vector<Rgba8> texels(3 * BRICK_SAMPLE_COUNT, 0u);
+  std::vector<uint64_t> occupancy(3, ~uint64_t{0});
+  const uint32_t slot = 1;
+  const Vec3i brick{3, -2, 5},
+      origin{brick.x * BRICK_WIDTH, brick.y * BRICK_WIDTH, brick.z * BRICK_WIDTH};
+  auto local = [&](int x, int y, int z) {  // the field, brick-relative so its bytes stay in range
+    return linearVoxel(x - origin.x + 1, y - origin.y + 1, z - origin.z + 1);
+  };
+  for (int z = 0; z < BRICK_SAMPLES; ++z)
+    for (int y = 0; y < BRICK_SAMPLES; ++y)
+      for (int x = 0; x < BRICK_SAMPLES; ++x)
+        texels[slot * BRICK_SAMPLE_COUNT + (z * BRICK_SAMPLES + y) * BRICK_SAMPLES + x] =
+            local(origin.x + x - 1, origin.y + y - 1, origin.z + z - 1);
+  BrickPool pool{texels.data(), occupancy.data()};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> in(0.0f, 8.0f);
+  for (int i = 0; i < 2000; ++i) {
+    Vec3f v{origin.x + in(rng), origin.y + in(rng), origin.z + in(rng)};
+    Vec4f got = pool.sample(slot, origin, v);
+    Vec4f want = trilinear(v, [&](Vec3i c) {
+      return [&, c](int dx, int dy, int dz) { return local(c.x + dx, c.y + dy, c.z + dz); };
+    });
+    ASSERT_EQ(got.x, want.x) << i;
+    ASSERT_EQ(got.y, want.y) << i;
+    ASSERT_EQ(got.z, want.z) << i;
+    ASSERT_EQ(got.w, want.w) << i;
+    Vec4f field = linearField({v.x - origin.x + 1, v.y - origin.y + 1, v.z - origin.z + 1});
+    ASSERT_NEAR(got.x, field.x, 1e-5f) << i;
+    ASSERT_NEAR(got.y, field.y, 1e-5f) << i;
+    ASSERT_NEAR(got.z, field.z, 1e-5f) << i;
+    ASSERT_NEAR(got.w, field.w, 1e-5f) << i;
+  }
 }
 
 }  // namespace gvdp::detail
