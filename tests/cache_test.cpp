@@ -438,6 +438,14 @@ TEST(Cache, OccupancyCellsAreExact) {
           (nonzero ? set : clear)++;
         }
         Vec3i origin{8 * local.x, 8 * local.y, 8 * local.z};
+        // A sample told the occupancy is the read one, bit for bit (zero where it skips the read),
+        // on the faces too.
+        std::uniform_real_distribution<float> face(-0.01f, 8.01f);
+        for (int k = 0; k < 400; ++k) {
+          Vec3f at{origin.x + face(rng), origin.y + face(rng), origin.z + face(rng)};
+          Vec4f read = pool.sample(slot, origin, at), told = pool.sample(slot, origin, at, occupancy);
+          ASSERT_EQ(std::memcmp(&read, &told, sizeof read), 0) << "slot " << slot << " k " << k;
+        }
         for (int k = 0; k < 200; ++k) {
           Vec3f p{u(rng), u(rng), u(rng)};
           if (occupancy & occupancyBit(p)) continue;
@@ -450,6 +458,18 @@ TEST(Cache, OccupancyCellsAreExact) {
   EXPECT_GT(bricks, 5) << "no resident brick near the surface";
   EXPECT_GT(clear, 0);
   EXPECT_GT(set, 0);
+}
+
+// The cell a sample tests is the cell of the block it reads: it holds the two samples read along
+// each axis, for every block index a position in the brick can give (0..8 with the border).
+TEST(Cache, OccupancyBitOfBlockHoldsTheBlock) {
+  for (int j = 0; j <= 8; ++j) {
+    uint64_t bit = occupancyBitOfBlock({j, j, j});
+    int c = std::countr_zero(bit) % OCCUPANCY_CELLS;
+    EXPECT_LE(2 * c, j) << j;          // cell c holds samples 2c..2c+3
+    EXPECT_LE(j + 1, 2 * c + 3) << j;  // the block's second sample too
+    EXPECT_EQ(bit, occupancyBitOfBlock({j, 0, 0}) << (c * (OCCUPANCY_CELLS + 16)));
+  }
 }
 
 // The cells between two positions hold the cell of every position on the segment between them

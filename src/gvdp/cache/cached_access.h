@@ -56,8 +56,9 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
   if (coarser) atomicAdd64(&c[MARCH_COARSER], coarser);
 }
 
-// Pool provides: Vec4f sample<READS>(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v), v in voxel
-// coordinates of the brick's level (local), brickVoxelOrigin = 8 * local brick coordinates, and
+// Pool provides: Vec4f sample<READS>(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v, uint64_t
+// occupancy), v in voxel coordinates of the brick's level (local), brickVoxelOrigin = 8 * local
+// brick coordinates, zero without a read where the sample's voxels lie in a clear cell, and
 // uint64_t loadOccupancy<READS>(slot) (render/brick_pool.h).
 // OnMiss(cache, level, globalBrick, entry) runs when the entry was MISSING: it claims the brick
 // with a CAS from MISSING (one thread wins) and the winner starts its production; the ray waits
@@ -240,13 +241,11 @@ struct CachedAccess {
     return {BrickState::Empty, 0u, level, brick};
   }
 
-  // A sample in a clear cell is zero without a read: trilinear() of its eight zero samples.
+  // A sample in a clear cell is zero without a read (the pool tests it).
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
     ++samples;
-    Vec3f v = lod.inVoxels(p, b.level);
-    if (!(b.occupancy & occupancyBit(voxelInBrick(v, b.brick)))) return {0.0f, 0.0f, 0.0f, 0.0f};
     Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
-    return pool.template sample<READS>(b.slot, origin, v);
+    return pool.template sample<READS>(b.slot, origin, lod.inVoxels(p, b.level), b.occupancy);
   }
 };
 

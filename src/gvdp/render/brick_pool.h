@@ -43,11 +43,21 @@ GVDP_HD GVDP_INLINE uint64_t occupancyBox(uint32_t x, uint32_t y, uint32_t z) {
   return uint64_t{x * ySpread} * zSpread;
 }
 
-// The cell of a position v in voxel units from the brick's origin.
+// The cell of a position v in voxel units from the brick's origin, as the clear-brick test sees
+// it (occupancyCellsBetween; a sample tests its block's cell, occupancyBitOfBlock).
 GVDP_HD GVDP_INLINE uint64_t occupancyBit(Vec3f v) {
   return uint64_t{1} << (occupancyCell(v.x) +
                          OCCUPANCY_CELLS *
                              (occupancyCell(v.y) + OCCUPANCY_CELLS * occupancyCell(v.z)));
+}
+
+// The cell whose samples hold the 2x2x2 block trilinear() reads from sample index j on (0..8 per
+// axis, of the 10^3 with the border): cell c holds samples 2c..2c+3, so min(j, 7) / 2 holds j and
+// j + 1. A sample whose block lies in a clear cell is zero, wherever its position lies in the
+// cell; the test reuses the index the read needs anyway (BrickPool::sample).
+GVDP_HD GVDP_INLINE uint64_t occupancyBitOfBlock(Vec3i j) {
+  auto cell = [](int i) { return (i < 7 ? i : 7) >> 1; };
+  return uint64_t{1} << (cell(j.x) + OCCUPANCY_CELLS * (cell(j.y) + OCCUPANCY_CELLS * cell(j.z)));
 }
 
 // The cells of the box from the cell of a to the cell of b (positions as for occupancyBit): it
@@ -89,20 +99,22 @@ struct BrickPool {
     return *p;
   }
 
-  // v: voxel coordinates of the brick's level (local); origin = 8 * local brick coordinates.
-  // One address for the eight voxels, read at constant offsets from it: the loads carry the
-  // offsets. An address per voxel (64-bit arithmetic each) took 45 of the 213 instructions of a
-  // sample in sp's render kernel; without them, forest's floor fell 8% (BENCHMARKS.md, session 15).
+  // v: voxel coordinates of the brick's level (local); origin = 8 * local brick coordinates. A
+  // sample whose block lies in a clear cell of `cells` (the slot's occupancy) is zero without a read (the eight
+  // samples are), tested with the block's own index. One address for the eight voxels, read at
+  // constant offsets from it: the loads carry the offsets. An address per voxel (64-bit
+  // arithmetic each) took 45 of the 213 instructions of a sample in sp's render kernel; without
+  // them, forest's floor fell 8% (BENCHMARKS.md, session 15).
   template <PoolReads READS = PoolReads::Coherent>
-  GVDP_HD Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v) const {
-    const Rgba8* brick = texels + static_cast<size_t>(slot) * BRICK_SAMPLE_COUNT;
-    return trilinear(v, [&](Vec3i i) {
-      const Rgba8* first =
-          brick + ((i.z - origin.z + 1) * BRICK_SAMPLES + (i.y - origin.y + 1)) * BRICK_SAMPLES +
-          (i.x - origin.x + 1);
-      return [first](int dx, int dy, int dz) {
-        return load<READS>(first + (dz * BRICK_SAMPLES + dy) * BRICK_SAMPLES + dx);
-      };
+  GVDP_HD Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v,
+                       uint64_t cells = ~uint64_t{0}) const {
+    TrilinearSite s = trilinearSite(v);
+    Vec3i j{s.first.x - origin.x + 1, s.first.y - origin.y + 1, s.first.z - origin.z + 1};
+    if (!(cells & occupancyBitOfBlock(j))) return {0.0f, 0.0f, 0.0f, 0.0f};
+    const Rgba8* first = texels + static_cast<size_t>(slot) * BRICK_SAMPLE_COUNT +
+                         (j.z * BRICK_SAMPLES + j.y) * BRICK_SAMPLES + j.x;
+    return interpolate(s, [first](int dx, int dy, int dz) {
+      return load<READS>(first + (dz * BRICK_SAMPLES + dy) * BRICK_SAMPLES + dx);
     });
   }
 
