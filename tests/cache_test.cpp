@@ -443,7 +443,8 @@ TEST(Cache, OccupancyCellsAreExact) {
         std::uniform_real_distribution<float> face(-0.01f, 8.01f);
         for (int k = 0; k < 400; ++k) {
           Vec3f at{origin.x + face(rng), origin.y + face(rng), origin.z + face(rng)};
-          Vec4f read = pool.sample(slot, origin, at), told = pool.sample(slot, origin, at, occupancy);
+          Vec4f read = pool.sample(slot, origin, at),
+                told = pool.sample(slot, origin, at, occupancy);
           ASSERT_EQ(std::memcmp(&read, &told, sizeof read), 0) << "slot " << slot << " k " << k;
         }
         for (int k = 0; k < 200; ++k) {

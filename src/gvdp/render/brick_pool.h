@@ -100,14 +100,13 @@ struct BrickPool {
   }
 
   // v: voxel coordinates of the brick's level (local); origin = 8 * local brick coordinates. A
-  // sample whose block lies in a clear cell of `cells` (the slot's occupancy) is zero without a read (the eight
-  // samples are), tested with the block's own index. One address for the eight voxels, read at
-  // constant offsets from it: the loads carry the offsets. An address per voxel (64-bit
-  // arithmetic each) took 45 of the 213 instructions of a sample in sp's render kernel; without
-  // them, forest's floor fell 8% (BENCHMARKS.md, session 15).
+  // sample whose block lies in a clear cell of `cells` (the slot's occupancy) is zero without a
+  // read (the eight samples are), tested with the block's own index. One address for the eight
+  // voxels, read at constant offsets from it: the loads carry the offsets. An address per voxel
+  // (64-bit arithmetic each) took 45 of the 213 instructions of a sample in sp's render kernel;
+  // without them, forest's floor fell 8% (BENCHMARKS.md, session 15).
   template <PoolReads READS = PoolReads::Coherent>
-  GVDP_HD Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v,
-                       uint64_t cells = ~uint64_t{0}) const {
+  GVDP_HD Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v, uint64_t cells = ~uint64_t{0}) const {
     TrilinearSite s = trilinearSite(v);
     Vec3i j{s.first.x - origin.x + 1, s.first.y - origin.y + 1, s.first.z - origin.z + 1};
     if (!(cells & occupancyBitOfBlock(j))) return {0.0f, 0.0f, 0.0f, 0.0f};

@@ -82,8 +82,8 @@ GVDP_HD GVDP_INLINE float boxExit(const Ray& ray, Vec3f invD, Vec3i brick, uint3
   return planesExit(ray, invD, exit);
 }
 
-// v (a position in voxels of a level) from the origin of `brick` of that level: where a sample's
-// occupancy cell is read (render/brick_pool.h: occupancyBit).
+// v (a position in voxels of a level) from the origin of `brick` of that level: where the
+// clear-brick test reads a position's occupancy cell (render/brick_pool.h: occupancyCellsBetween).
 GVDP_HD GVDP_INLINE Vec3f voxelInBrick(Vec3f v, Vec3i brick) {
   return {v.x - static_cast<float>(brick.x * BRICK_WIDTH),
           v.y - static_cast<float>(brick.y * BRICK_WIDTH),
@@ -95,10 +95,10 @@ enum class MarchResult : uint8_t { Finished, Stopped };
 // Access provides:
 //   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level
 //   Vec4f sample(const BrickLookup&, Vec3f p)    p: local position of the sample
-// A resident lookup is reused while the samples stay in its brick at their own level, a StandIn
-// while they stay in its box (a coarser Resident one - the lookahead's prediction - is looked up
-// again at every sample: the lookahead claims the finer bricks under it).
-// Whether lookup r answers for brick `brick` of `level` (see above).
+// A resident lookup of the ray's level serves a run of samples (march, below). Otherwise a lookup
+// is reused while the samples stay in its brick, a StandIn while they stay in its box (a coarser
+// Resident one - the lookahead's prediction - is looked up again at every sample: the lookahead
+// claims the finer bricks under it). Whether lookup r answers for brick `brick` of `level`:
 GVDP_HD GVDP_INLINE bool covers(const BrickLookup& r, int level, Vec3i brick) {
   if (r.level == level) return brick == r.brick;
   int up = r.level - level;
@@ -110,63 +110,71 @@ template <class Access>
 GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
   BrickLookup resident{BrickState::Resident, 0u, -1, {0, 0, 0}};
   int spanLevel = -1;  // the level `span` describes
+  // The run: steps up to runEnd of spanLevel lie in `resident`'s brick (a resident brick of their
+  // level, from its entry to where the ray leaves it or the level) and sample it with no brick
+  // test. A sample of the run on a face may round into the neighbour: the brick gives it the
+  // neighbour's value (the shared border; an EMPTY neighbour's bound reaches a voxel into it).
+  int runEnd = -1;
   LevelSpan span{};
   Vec3f invD = inverseDirection(ray);
   while (!s.finished(lod)) {
     if (s.level != spanLevel) {
       span = lod.span(s.level);
       spanLevel = s.level;
+      runEnd = -1;
     }
     float t = span.sampleT(s.step);
-    if (t >= span.end) {
-      ++s.level;
-      s.step = 0;
-      continue;
-    }
     Vec3f p = ray.o + ray.d * t;
-    // A position on a brick face may round to either brick: both give it the same value
-    // (neighbouring bricks share their border samples, and EMPTY bounds reach a voxel beyond).
-    Vec3i brick = span.brickOf(p);
-    BrickLookup b = resident;
-    if (!covers(resident, s.level, brick)) {
-      b = access.lookup(s.level, brick);
-      if (b.state == BrickState::Stop) return MarchResult::Stopped;
-      if (b.state == BrickState::End) {
-        s.level = lod.levels;
-        return MarchResult::Finished;
-      }
-      if (b.state == BrickState::Empty) {
-        // Every sample of the box at a level up to the box's own is zero; coarser samples in
-        // it may not be: the skip ends at the box or at the end of its level, whichever comes
-        // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
-        // its level or a coarser one, whichever boxes the lookups happened to return: the
-        // image does not depend on how far each skip goes.
-        bool own = b.level == s.level;
-        float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
-        float levelEnd = own ? span.end : lod.levelEnd(b.level);
-        advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
+    if (s.step > runEnd) {
+      if (t >= span.end) {
+        ++s.level;
+        s.step = 0;
         continue;
       }
-      resident = b;
-      // A brick of the ray's level whose samples from here to where the ray leaves it (or the
-      // level) all lie in clear cells is left at once: each of them samples zero. The cells of
-      // the first and the last sample bound those of the ones between (positions and cells are
-      // monotone along the ray), so the test is exact; a sample past a face that rounds into
-      // the neighbour reads the value the neighbour would give it (the shared border).
-      if (b.state == BrickState::Resident && b.level == s.level) {
-        float tEnd = fminf(boxExit(ray, invD, b.brick, 0u, span.voxelSize * BRICK_WIDTH), span.end);
-        int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
-        if (last > s.step) {
-          Vec3f q = ray.o + ray.d * span.sampleT(last);
-          if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(span.inVoxels(p), b.brick),
-                                                    voxelInBrick(span.inVoxels(q), b.brick)))) {
-            advanceTo(s, lod, span, tEnd);
-            continue;
+      // A position on a brick face may round to either brick: both give it the same value
+      // (above).
+      Vec3i brick = span.brickOf(p);
+      if (!covers(resident, s.level, brick)) {
+        BrickLookup b = access.lookup(s.level, brick);
+        if (b.state == BrickState::Stop) return MarchResult::Stopped;
+        if (b.state == BrickState::End) {
+          s.level = lod.levels;
+          return MarchResult::Finished;
+        }
+        if (b.state == BrickState::Empty) {
+          // Every sample of the box at a level up to the box's own is zero; coarser samples in
+          // it may not be: the skip ends at the box or at the end of its level, whichever comes
+          // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
+          // its level or a coarser one, whichever boxes the lookups happened to return: the
+          // image does not depend on how far each skip goes.
+          bool own = b.level == s.level;
+          float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
+          float levelEnd = own ? span.end : lod.levelEnd(b.level);
+          advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
+          continue;
+        }
+        resident = b;
+        // A brick of the ray's level whose samples from here to where the ray leaves it (or the
+        // level) all lie in clear cells is left at once: each of them samples zero. The cells of
+        // the first and the last sample bound those of the ones between (positions and cells
+        // are monotone along the ray), so the test is exact. Otherwise its samples are a run.
+        if (b.state == BrickState::Resident && b.level == s.level) {
+          float tEnd =
+              fminf(boxExit(ray, invD, b.brick, 0u, span.voxelSize * BRICK_WIDTH), span.end);
+          int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
+          if (last > s.step) {
+            Vec3f q = ray.o + ray.d * span.sampleT(last);
+            if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(span.inVoxels(p), b.brick),
+                                                      voxelInBrick(span.inVoxels(q), b.brick)))) {
+              advanceTo(s, lod, span, tEnd);
+              continue;
+            }
           }
+          runEnd = last;
         }
       }
     }
-    Vec4f c = access.sample(b, p);
+    Vec4f c = access.sample(resident, p);
     float k = 1.0f - s.colour.w;
     s.colour = {s.colour.x + k * c.x, s.colour.y + k * c.y, s.colour.z + k * c.z,
                 s.colour.w + k * c.w};
