@@ -514,7 +514,60 @@ struct EveryCellOccupied : CachedAccess<BrickPool> {
   }
 };
 
+// CachedAccess whose resident bricks serve no run (render/march.h): a StandIn of the ray's own
+// level is found again per sample, brick by brick, as the march did before runs.
+struct NoRuns : CachedAccess<BrickPool> {
+  BrickLookup lookup(int level, Vec3i brick) {
+    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
+    if (b.state == BrickState::Resident) b.state = BrickState::StandIn;
+    return b;
+  }
+};
+
+// Fills the cache with what the rays of frame f ask for, then marches every ray twice from the
+// full cache, with `a` and with `b` (accesses built from the view): the colours, bit for bit.
+template <class A, class B>
+void expectSameMarches(const char* scene, A makeA, B makeB) {
+  const SceneInfo& info = findScene(scene);
+  BrickCacheCpu cache(30000);
+  FrameSetup f = makeFrame(info.start, info.world.voxelSize0(), 96, 60, 6, 0);
+  cache.beginFrame(f);
+  CacheView v = cache.view();
+  BrickPool pool = cache.pool();
+  for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
+    Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
+    RayState filling = initialRayState();
+    for (;;) {
+      CachedAccess<BrickPool> access{v, pool, f.lod};
+      if (march(ray, f.lod, filling, access) == MarchResult::Finished) break;
+      for (uint32_t r = 0; r < v.counters[COUNTER_REQUESTS]; ++r)
+        produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, info.world, v, pool, cache.requests()[r]);
+      cache.clearRequests();
+    }
+    RayState sa = initialRayState(), sb = initialRayState();
+    auto a = makeA(v, pool, f.lod);
+    auto b = makeB(v, pool, f.lod);
+    ASSERT_EQ(march(ray, f.lod, sa, a), MarchResult::Finished) << scene << " " << pixel;
+    ASSERT_EQ(march(ray, f.lod, sb, b), MarchResult::Finished) << scene << " " << pixel;
+    ASSERT_EQ(std::memcmp(&sa.colour, &sb.colour, sizeof(Vec4f)), 0) << scene << " " << pixel;
+  }
+}
+
 }  // namespace
+
+// A resident brick's run (its samples with no brick test each) samples what the brick-by-brick
+// march samples, bit for bit, faces included.
+TEST(Cache, RunsOfSamplesChangeNoPixel) {
+  for (const char* scene : {"forest", "random-spheres"})
+    expectSameMarches(
+        scene,
+        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+          return CachedAccess<BrickPool>{v, pool, lod};
+        },
+        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+          return NoRuns{{v, pool, lod}};
+        });
+}
 
 // Leaving clear cells and clear bricks early changes no pixel, bit for bit, and saves most of the
 // sample steps near perlin's ground.
