@@ -449,7 +449,7 @@ TEST(Cache, OccupancyCellsAreExact) {
         }
         for (int k = 0; k < 200; ++k) {
           Vec3f p{u(rng), u(rng), u(rng)};
-          if (occupancy & occupancyBit(p)) continue;
+          if (occupancy & occupancyCellsBetween(p, p)) continue;
           Vec4f c =
               pool.sample(slot, origin, Vec3f{origin.x + p.x, origin.y + p.y, origin.z + p.z});
           ASSERT_EQ(c.w, 0.0f);
@@ -483,10 +483,14 @@ TEST(Cache, OccupancyCellsBetweenHoldTheSegment) {
     Vec3f a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)};
     uint64_t between = occupancyCellsBetween(a, b);
     ASSERT_EQ(between, occupancyCellsBetween(b, a));
-    ASSERT_EQ(between & occupancyBit(a), occupancyBit(a));
-    ASSERT_EQ(between & occupancyBit(b), occupancyBit(b));
+    ASSERT_EQ(std::popcount(occupancyCellsBetween(a, a)), 1) << k;  // a's cell alone
+    ASSERT_EQ(between & occupancyCellsBetween(a, a), occupancyCellsBetween(a, a));
+    ASSERT_EQ(between & occupancyCellsBetween(b, b), occupancyCellsBetween(b, b));
     uint64_t swept = 0;
-    for (int i = 0; i <= 64; ++i) swept |= occupancyBit(a + (b - a) * (static_cast<float>(i) / 64));
+    for (int i = 0; i <= 64; ++i) {
+      Vec3f at = a + (b - a) * (static_cast<float>(i) / 64);
+      swept |= occupancyCellsBetween(at, at);
+    }
     ASSERT_EQ(between & swept, swept) << k;
     int span = 1;
     for (int axis = 0; axis < 3; ++axis) {

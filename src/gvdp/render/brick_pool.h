@@ -43,14 +43,6 @@ GVDP_HD GVDP_INLINE uint64_t occupancyBox(uint32_t x, uint32_t y, uint32_t z) {
   return uint64_t{x * ySpread} * zSpread;
 }
 
-// The cell of a position v in voxel units from the brick's origin, as the clear-brick test sees
-// it (occupancyCellsBetween; a sample tests its block's cell, occupancyBitOfBlock).
-GVDP_HD GVDP_INLINE uint64_t occupancyBit(Vec3f v) {
-  return uint64_t{1} << (occupancyCell(v.x) +
-                         OCCUPANCY_CELLS *
-                             (occupancyCell(v.y) + OCCUPANCY_CELLS * occupancyCell(v.z)));
-}
-
 // The cell whose samples hold the 2x2x2 block trilinear() reads from sample index j on (0..8 per
 // axis, of the 10^3 with the border): cell c holds samples 2c..2c+3, so min(j, 7) / 2 holds j and
 // j + 1. A sample whose block lies in a clear cell is zero, wherever its position lies in the
@@ -60,9 +52,10 @@ GVDP_HD GVDP_INLINE uint64_t occupancyBitOfBlock(Vec3i j) {
   return uint64_t{1} << (cell(j.x) + OCCUPANCY_CELLS * (cell(j.y) + OCCUPANCY_CELLS * cell(j.z)));
 }
 
-// The cells of the box from the cell of a to the cell of b (positions as for occupancyBit): it
-// holds the cell of every position on the segment between them, the cell being monotone in each
-// coordinate.
+// The cells of the box from the cell of a to the cell of b (positions in voxel units from the
+// brick's origin, cells by occupancyCell): it holds the cell of every position on the segment
+// between them, the cell being monotone in each coordinate; (a, a) is a's cell alone. The
+// clear-brick test (render/march.h); a sample tests its block's cell (occupancyBitOfBlock).
 GVDP_HD GVDP_INLINE uint64_t occupancyCellsBetween(Vec3f a, Vec3f b) {
   auto axis = [](float p, float q) {
     int cp = occupancyCell(p), cq = occupancyCell(q);
@@ -89,7 +82,7 @@ enum class PoolReads : uint8_t {
 
 struct BrickPool {
   Rgba8* texels;        // slot * BRICK_SAMPLE_COUNT + (z * 10 + y) * 10 + x
-  uint64_t* occupancy;  // per slot (occupancyBit), written with the samples, before the entry
+  uint64_t* occupancy;  // per slot (cells, above), written with the samples, before the entry
 
   template <PoolReads READS, class T>
   GVDP_HD static T load(const T* p) {
