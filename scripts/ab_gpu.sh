@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # On a GPU machine: an A/B of gvdp binaries on `gvdp bench` (1500x1000), ROUNDS rounds, the
 # binaries interleaved within each round; then, per binary against the first, the geometric means
-# of floor_ms and avg_fps over the cells (medians of the rounds) and each cell's floor and FPS.
-# Prints the summary and writes it to $OUT/ab.txt, the CSVs and logs (ab_<name>_<round>.csv, name:
-# the binary's folder) to $OUT/ab_results.tgz (the device tool brings back 8 files a call).
+# of floor_ms and avg_fps over the cells and each cell's floor and FPS, each the upper median of
+# its rounds (with two rounds, the larger value: the same rule for every binary).
+# Prints the summary and writes it to $OUT/ab.txt; the CSVs, JSONs and logs
+# (ab_<name>_<round>.*, name: the binary's folder) to $OUT/ab_results.tgz (the device tool brings
+# back 8 files a call).
 # Extra arguments go to every bench (e.g. --scenes forest).
 # Usage: scripts/ab_gpu.sh ROUNDS SCHEDULERS MOVEMENTS BIN [BIN...] [-- BENCH_ARGS...]
 set -uo pipefail
@@ -21,7 +23,7 @@ for r in $(seq 1 "$rounds"); do
   for bin in "${bins[@]}"; do
     name=$(basename "$(dirname "$bin")")
     "$bin" bench --backend cuda --schedulers "$schedulers" --movements "$movements" "$@" \
-      --out "/tmp/ab_${name}_$r.json" --csv "$out/ab_${name}_$r.csv" >"$out/ab_${name}_$r.log" 2>&1 ||
+      --out "$out/ab_${name}_$r.json" --csv "$out/ab_${name}_$r.csv" >"$out/ab_${name}_$r.log" 2>&1 ||
       echo "$name round $r: bench failed ($(tail -n 1 "$out/ab_${name}_$r.log"))"
   done
 done
@@ -49,7 +51,7 @@ for n in names[1:]:
     fps = gm([med(data[n][k], 'avg_fps') / med(base[k], 'avg_fps') for k in keys])
     unf = sum(int(x['unfinished_pixels']) for k in keys for x in data[n][k])
     print(f'{n} vs {names[0]}: floors x{fl:.3f}, FPS x{fps:.3f} over {len(keys)} cells, unfinished {unf}')
-print('cell'.ljust(40) + ''.join(f'{n:>22}' for n in names) + '   (floor ms / avg FPS, median of rounds)')
+print('cell'.ljust(40) + ''.join(f'{n:>22}' for n in names) + '   (floor ms / avg FPS, upper median of rounds)')
 for k in base:
     row = ' '.join(k).ljust(40)
     for n in names:
