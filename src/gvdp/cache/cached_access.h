@@ -242,10 +242,19 @@ struct CachedAccess {
   }
 
   // A sample in a clear cell is zero without a read (the pool tests it).
-  GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
-    ++samples;
+  GVDP_HD Vec4f read(const BrickLookup& b, Vec3f p) const {
     Vec3i origin{b.brick.x * BRICK_WIDTH, b.brick.y * BRICK_WIDTH, b.brick.z * BRICK_WIDTH};
     return pool.template sample<READS>(b.slot, origin, lod.inVoxels(p, b.level), b.occupancy);
+  }
+
+  GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) {
+    ++samples;
+    return read(b, p);
+  }
+
+  // Samples read by other lanes for this march (render/march_warp.cuh).
+  GVDP_HD void countSamples(uint32_t n) {
+    samples += n;
   }
 };
 

@@ -106,8 +106,18 @@ GVDP_HD GVDP_INLINE bool covers(const BrickLookup& r, int level, Vec3i brick) {
          Vec3i{brick.x >> up, brick.y >> up, brick.z >> up} == r.brick;
 }
 
+// A ray's march as a sequence of steps, so that a warp can share the sampling of its lanes' rays
+// (render/march_warp.cuh); march() below is its loop on one thread. seek() moves the state to
+// the next sample that reads a brick, one brick decision at a time; the sample at s.step then
+// reads `resident`, and so does every step up to runEnd (a run) without a seek.
 template <class Access>
-GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
+struct Marcher {
+  enum class Seek : uint8_t { Due, Moved, Finished, Stopped };
+
+  const Ray& ray;
+  const Lod& lod;
+  RayState& s;
+  Access& access;
   BrickLookup resident{BrickState::Resident, 0u, -1, {0, 0, 0}};
   int spanLevel = -1;  // the level `span` describes
   // The run: steps up to runEnd of spanLevel lie in `resident`'s brick (a resident brick of their
@@ -116,71 +126,96 @@ GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& a
   // neighbour's value (the shared border; an EMPTY neighbour's bound reaches a voxel into it).
   int runEnd = -1;
   LevelSpan span{};
-  Vec3f invD = inverseDirection(ray);
-  while (!s.finished(lod)) {
+  Vec3f invD;
+
+  GVDP_HD Marcher(const Ray& r, const Lod& l, RayState& state, Access& a)
+      : ray(r), lod(l), s(state), access(a), invD(inverseDirection(r)) {}
+
+  // Due: the sample at s.step reads `resident`. Moved: the state moved on without a sample (a
+  // level's end, an EMPTY box, a clear brick); seek again. Finished, Stopped: as march().
+  GVDP_HD Seek seek() {
+    if (s.finished(lod)) return Seek::Finished;
     if (s.level != spanLevel) {
       span = lod.span(s.level);
       spanLevel = s.level;
       runEnd = -1;
     }
+    if (s.step <= runEnd) return Seek::Due;
     float t = span.sampleT(s.step);
-    Vec3f p = ray.o + ray.d * t;
-    if (s.step > runEnd) {
-      if (t >= span.end) {
-        ++s.level;
-        s.step = 0;
-        continue;
-      }
-      // A position on a brick face may round to either brick: both give it the same value
-      // (above).
-      Vec3i brick = span.brickOf(p);
-      if (!covers(resident, s.level, brick)) {
-        BrickLookup b = access.lookup(s.level, brick);
-        if (b.state == BrickState::Stop) return MarchResult::Stopped;
-        if (b.state == BrickState::End) {
-          s.level = lod.levels;
-          return MarchResult::Finished;
-        }
-        if (b.state == BrickState::Empty) {
-          // Every sample of the box at a level up to the box's own is zero; coarser samples in
-          // it may not be: the skip ends at the box or at the end of its level, whichever comes
-          // first. A sample is thus skipped exactly when it is zero-valued by an EMPTY box of
-          // its level or a coarser one, whichever boxes the lookups happened to return: the
-          // image does not depend on how far each skip goes.
-          bool own = b.level == s.level;
-          float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
-          float levelEnd = own ? span.end : lod.levelEnd(b.level);
-          advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
-          continue;
-        }
-        resident = b;
-        // A brick of the ray's level whose samples from here to where the ray leaves it (or the
-        // level) all lie in clear cells is left at once: each of them samples zero. The cells of
-        // the first and the last sample bound those of the ones between (positions and cells
-        // are monotone along the ray), so the test is exact. Otherwise its samples are a run.
-        if (b.state == BrickState::Resident && b.level == s.level) {
-          float tEnd =
-              fminf(boxExit(ray, invD, b.brick, 0u, span.voxelSize * BRICK_WIDTH), span.end);
-          int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
-          if (last > s.step) {
-            Vec3f q = ray.o + ray.d * span.sampleT(last);
-            if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(span.inVoxels(p), b.brick),
-                                                      voxelInBrick(span.inVoxels(q), b.brick)))) {
-              advanceTo(s, lod, span, tEnd);
-              continue;
-            }
-          }
-          runEnd = last;
-        }
-      }
+    if (t >= span.end) {
+      ++s.level;
+      s.step = 0;
+      return Seek::Moved;
     }
-    Vec4f c = access.sample(resident, p);
+    // A position on a brick face may round to either brick: both give it the same value (above).
+    Vec3f p = ray.o + ray.d * t;
+    Vec3i brick = span.brickOf(p);
+    if (covers(resident, s.level, brick)) return Seek::Due;
+    BrickLookup b = access.lookup(s.level, brick);
+    if (b.state == BrickState::Stop) return Seek::Stopped;
+    if (b.state == BrickState::End) {
+      s.level = lod.levels;
+      return Seek::Finished;
+    }
+    if (b.state == BrickState::Empty) {
+      // Every sample of the box at a level up to the box's own is zero; coarser samples in it
+      // may not be: the skip ends at the box or at the end of its level, whichever comes first.
+      // A sample is thus skipped exactly when it is zero-valued by an EMPTY box of its level or
+      // a coarser one, whichever boxes the lookups happened to return: the image does not depend
+      // on how far each skip goes.
+      bool own = b.level == s.level;
+      float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
+      float levelEnd = own ? span.end : lod.levelEnd(b.level);
+      advanceTo(s, lod, span, fminf(boxExit(ray, invD, b.brick, b.emptyCodes, side), levelEnd));
+      return Seek::Moved;
+    }
+    resident = b;
+    // A brick of the ray's level whose samples from here to where the ray leaves it (or the
+    // level) all lie in clear cells is left at once: each of them samples zero. The cells of the
+    // first and the last sample bound those of the ones between (positions and cells are
+    // monotone along the ray), so the test is exact. Otherwise its samples are a run.
+    if (b.state == BrickState::Resident && b.level == s.level) {
+      float tEnd = fminf(boxExit(ray, invD, b.brick, 0u, span.voxelSize * BRICK_WIDTH), span.end);
+      int last = Lod::firstStepAtOrAfter(span, tEnd) - 1;
+      if (last > s.step) {
+        Vec3f q = ray.o + ray.d * span.sampleT(last);
+        if (!(b.occupancy & occupancyCellsBetween(voxelInBrick(span.inVoxels(p), b.brick),
+                                                  voxelInBrick(span.inVoxels(q), b.brick)))) {
+          advanceTo(s, lod, span, tEnd);
+          return Seek::Moved;
+        }
+      }
+      runEnd = last;
+    }
+    return Seek::Due;
+  }
+
+  // The samples from s.step that read `resident` without a seek (Due: at least 1).
+  GVDP_HD int runLength() const { return (runEnd > s.step ? runEnd : s.step) - s.step + 1; }
+
+  // The position of the sample at s.step.
+  GVDP_HD Vec3f position() const { return ray.o + ray.d * span.sampleT(s.step); }
+
+  // Composites the sample at s.step (front to back) and steps on.
+  GVDP_HD void composite(Vec4f c) {
     float k = 1.0f - s.colour.w;
     s.colour = {s.colour.x + k * c.x, s.colour.y + k * c.y, s.colour.z + k * c.z,
                 s.colour.w + k * c.w};
     ++s.step;
   }
-  return MarchResult::Finished;
+};
+
+template <class Access>
+GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access) {
+  using Seek = typename Marcher<Access>::Seek;
+  Marcher<Access> m(ray, lod, s, access);
+  for (;;) {
+    Seek k = m.seek();
+    if (k == Seek::Moved) continue;
+    if (k == Seek::Finished) return MarchResult::Finished;
+    if (k == Seek::Stopped) return MarchResult::Stopped;
+    m.composite(access.sample(m.resident, m.position()));
+  }
 }
 
 }  // namespace gvdp::detail

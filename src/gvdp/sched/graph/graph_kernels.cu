@@ -8,17 +8,20 @@
 #include "gvdp/sched/compaction.cuh"
 #include "gvdp/sched/graph/graph_cuda.h"
 #include "gvdp/sched/producer_kernels_cuda.h"
-#include "gvdp/sched/ray_tasks.h"
+#include "gvdp/sched/ray_tasks_warp.cuh"
 #include "gvdp/sched/sp/sp.h"
 
 namespace gvdp::detail {
 namespace {
 
 constexpr int RENDER_BLOCK = 128;
+// 8 blocks of 4 warps fill an SM at 64 registers (render/march_warp.cuh).
+constexpr int RENDER_BLOCKS_PER_SM = 8;
 
 // Pass 0 covers the screen in 8x8 tiles from fresh states; later passes the live list.
-__global__ void __launch_bounds__(RENDER_BLOCK)
+__global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     graphRenderKernel(const GraphFrame* __restrict__ frame, GraphLoop* loop) {
+  __shared__ WarpMarchShared shared[RENDER_BLOCK / WARP_SIZE];
   const GraphFrame& graphFrame = blockCopy(frame);
   BlockTimer timer(graphFrame.frame.timeline, TaskKind::Render);
   const FrameSetup& f = graphFrame.frame;
@@ -35,11 +38,9 @@ __global__ void __launch_bounds__(RENDER_BLOCK)
     uint32_t i = base + static_cast<uint32_t>(lane);
     int pixel = -1;
     if (i < count) pixel = tiled ? tiledPixel(f, static_cast<int>(i)) : static_cast<int>(live[i]);
-    bool stopped = false;
-    if (pixel >= 0) {
-      if (tiled) graphFrame.payload[pixel] = initialRayState();
-      stopped = renderRay(f, graphFrame.cache, graphFrame.pool, graphFrame.payload, pixel);
-    }
+    if (tiled && pixel >= 0) graphFrame.payload[pixel] = initialRayState();
+    bool stopped = renderRayWarp(f, graphFrame.cache, graphFrame.pool, graphFrame.payload, pixel,
+                                 shared[threadIdx.x / WARP_SIZE]);
     appendStopped(stopped, static_cast<uint32_t>(pixel), next, &loop->nextCount);
   }
 }

@@ -4,35 +4,38 @@
 #include "gvdp/profile/parallel_for.cuh"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/sched/compaction.cuh"
-#include "gvdp/sched/ray_tasks.h"
+#include "gvdp/sched/ray_tasks_warp.cuh"
 #include "gvdp/sched/sp/sp_cuda.h"
 
 namespace gvdp::detail {
 namespace {
 
 constexpr int RENDER_BLOCK = 128;
+// 8 blocks of 4 warps fill an SM at 64 registers (render/march_warp.cuh).
+constexpr int RENDER_BLOCKS_PER_SM = 8;
 
-__global__ void __launch_bounds__(RENDER_BLOCK)
+__global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                           uint32_t* next, uint32_t* passCounters) {
+  __shared__ WarpMarchShared shared[RENDER_BLOCK / WARP_SIZE];
   BlockTimer timer(f.timeline, TaskKind::Render);
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
-  bool stopped = false;
-  if (pixel >= 0) {
-    payload[pixel] = initialRayState();
-    stopped = renderRay(f, cache, pool, payload, pixel);
-  }
+  if (pixel >= 0) payload[pixel] = initialRayState();
+  bool stopped = renderRayWarp(f, cache, pool, payload, pixel, shared[threadIdx.x / WARP_SIZE]);
   appendStopped(stopped, static_cast<uint32_t>(pixel), next, &passCounters[0]);
 }
 
-__global__ void __launch_bounds__(RENDER_BLOCK)
+__global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                      const uint32_t* live, uint32_t liveCount, uint32_t* next,
                      uint32_t* passCounters) {
+  __shared__ WarpMarchShared shared[RENDER_BLOCK / WARP_SIZE];
   BlockTimer timer(f.timeline, TaskKind::Render);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
-  bool stopped = i < liveCount && renderRay(f, cache, pool, payload, static_cast<int>(pixel));
+  bool stopped =
+      renderRayWarp(f, cache, pool, payload, i < liveCount ? static_cast<int>(pixel) : -1,
+                    shared[threadIdx.x / WARP_SIZE]);
   appendStopped(stopped, pixel, next, &passCounters[0]);
 }
 
