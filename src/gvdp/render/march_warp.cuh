@@ -1,11 +1,14 @@
 // The march of a warp's 32 rays with their samples shared out (GPU; sp's and graph's render
-// passes). Each lane seeks its own ray's next run of samples (render/march.h: Marcher::seek, one
-// brick decision a round, lanes deciding together); once the warp holds 32 samples due (or no
-// lane is left seeking), every lane reads one of them, whatever ray it belongs to, and each ray's
-// lane composites its own in order. The reads, most of a march's instructions, then run on every
-// lane rather than on the few whose rays happen to be sampling at a step (ncu: 7 of 32 lanes in
-// forest's walkthrough, BENCHMARKS.md). Each sample is the same arithmetic on the same values as
-// in march(), composited in the same order: the same image, bit for bit.
+// passes). Each round, the lanes whose ray has no sample due seek its next run (render/march.h:
+// Marcher::seek, one brick decision, lanes deciding together); then the warp's due samples are
+// shared out - every lane reads up to two, whatever ray they belong to - and each ray's lane
+// composites its own in order. The reads, most of a march's instructions, then run on most lanes
+// rather than on the few whose rays happen to be sampling at a step (ncu, forest's walkthrough:
+// 10.0 -> 16.9 lanes per instruction, BENCHMARKS.md). Each sample is the same arithmetic on the
+// same values as in march(), composited in the same order: the same image, bit for bit. A lane
+// reads bricks another lane looked up: sound where the pool cannot change while the kernel runs
+// (sp, graph: PoolReads::ReadOnly, no acquire to pass on); pt's worker, which publishes bricks as
+// it runs, keeps march() (docs/DESIGN.md, "Rendering": why).
 #pragma once
 
 #include "gvdp/render/march.h"
