@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <map>
@@ -530,8 +531,17 @@ struct NoRuns : CachedAccess<BrickPool> {
 
 // Fills the cache with what the rays of frame f ask for, then marches every ray twice from the
 // full cache, with `a` and with `b` (accesses built from the view): the colours, bit for bit.
-template <class A, class B>
-void expectSameMarches(const char* scene, A makeA, B makeB) {
+struct MarchOf {
+  template <class Access>
+  MarchResult operator()(const Ray& ray, const Lod& lod, RayState& s, Access& access) const {
+    return march(ray, lod, s, access);
+  }
+};
+
+// ... and `marchB` marches b's (march() unless given); `sameCounts`: the samples and lookups too.
+template <class A, class B, class MarchB = MarchOf>
+void expectSameMarches(const char* scene, A makeA, B makeB, MarchB marchB = {},
+                       bool sameCounts = false) {
   const SceneInfo& info = findScene(scene);
   BrickCacheCpu cache(30000);
   FrameSetup f = makeFrame(info.start, info.world.voxelSize0(), 96, 60, 6, 0);
@@ -552,8 +562,11 @@ void expectSameMarches(const char* scene, A makeA, B makeB) {
     auto a = makeA(v, pool, f.lod);
     auto b = makeB(v, pool, f.lod);
     ASSERT_EQ(march(ray, f.lod, sa, a), MarchResult::Finished) << scene << " " << pixel;
-    ASSERT_EQ(march(ray, f.lod, sb, b), MarchResult::Finished) << scene << " " << pixel;
+    ASSERT_EQ(marchB(ray, f.lod, sb, b), MarchResult::Finished) << scene << " " << pixel;
     ASSERT_EQ(std::memcmp(&sa.colour, &sb.colour, sizeof(Vec4f)), 0) << scene << " " << pixel;
+    if (!sameCounts) continue;
+    ASSERT_EQ(a.samples, b.samples) << scene << " " << pixel;
+    ASSERT_EQ(a.lookups, b.lookups) << scene << " " << pixel;
   }
 }
 
@@ -571,6 +584,44 @@ TEST(Cache, RunsOfSamplesChangeNoPixel) {
         [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
           return NoRuns{{v, pool, lod}};
         });
+}
+
+// marchWarp's use of Marcher (render/march_warp.cuh): a ray seeks only when nothing of its run is
+// due, and its run is read in shares of any size (the warp's rounds), each sample read with the
+// run's brick. The colours and the counts are march()'s, bit for bit: a run one sample too long
+// or a share that loses a sample fails it.
+TEST(Cache, RunsReadInSharesAsTheWarpReadsThemChangeNoPixel) {
+  for (const char* scene : {"forest", "random-spheres"}) {
+    int share = 0;
+    expectSameMarches(
+        scene,
+        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+          return CachedAccess<BrickPool>{v, pool, lod};
+        },
+        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+          return CachedAccess<BrickPool>{v, pool, lod};
+        },
+        [&share](const Ray& ray, const Lod& lod, RayState& s, CachedAccess<BrickPool>& access) {
+          using Seek = Marcher<CachedAccess<BrickPool>>::Seek;
+          Marcher<CachedAccess<BrickPool>> m(ray, lod, s, access);
+          for (;;) {
+            Seek k = m.seek();
+            if (k == Seek::Moved) continue;
+            if (k != Seek::Due)
+              return k == Seek::Stopped ? MarchResult::Stopped : MarchResult::Finished;
+            int left = m.runLength();
+            while (left > 0 && !s.finished(lod)) {
+              int take = std::min(left, 1 + share++ % 5);  // shares of 1 to 5 samples
+              left -= take;
+              for (int i = 0; i < take && !s.finished(lod); ++i) {
+                m.composite(access.read(m.resident, m.position()));
+                access.countSamples(1);
+              }
+            }
+          }
+        },
+        true);
+  }
 }
 
 // Leaving clear cells and clear bricks early changes no pixel, bit for bit, and saves most of the
