@@ -51,18 +51,30 @@ GVDP_HD GVDP_INLINE void storeRayState(RayState* p, const RayState& s) {
 #endif
 }
 
-// Algorithm 1 for one ray from its saved state; true when it stopped on a missing brick (its
-// state is saved and it must be relaunched after production). Used by sp and graph, whose
-// render kernels run while no brick is published: the pool is read-only to them.
-template <class Pool>
+// How renderRay marches: its one ray on the thread (the CPU's sp loop), or a warp's rays together,
+// their samples shared out (ray_tasks_warp.cuh: WarpRays).
+struct OneRay {
+  template <class Access>
+  GVDP_HD MarchResult operator()(const Ray& ray, const Lod& lod, RayState& s, Access& access,
+                                 bool active) const {
+    return active ? march(ray, lod, s, access) : MarchResult::Finished;
+  }
+};
+
+// Algorithm 1 for one ray from its saved state (pixel < 0: none, for a lane of a warp that has
+// none); true when it stopped on a missing brick (its state is saved and it must be relaunched
+// after production). Used by sp and graph, whose render kernels run while no brick is
+// published: the pool is read-only to them.
+template <class Pool, class Marches = OneRay>
 GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, const Pool& pool,
-                                   RayState* payload, int pixel) {
-  Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
-  RayState s = payload[pixel];
+                                   RayState* payload, int pixel, Marches marches = {}) {
+  bool active = pixel >= 0;
+  Ray ray = f.primaryRay(active ? pixel % f.width : 0, active ? pixel / f.width : 0);
+  RayState s = active ? payload[pixel] : initialRayState();
   CachedAccess<Pool, QueueRequest, PoolReads::ReadOnly> access{cache, pool, f.lod};
-  bool stopped = march(ray, f.lod, s, access) == MarchResult::Stopped;
+  bool stopped = marches(ray, f.lod, s, access, active) == MarchResult::Stopped;
   access.addCounts();
-  payload[pixel] = s;
+  if (active) payload[pixel] = s;
   return stopped;
 }
 

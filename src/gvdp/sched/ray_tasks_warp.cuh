@@ -7,19 +7,14 @@
 
 namespace gvdp::detail {
 
-// Every lane of the warp calls it; a lane with pixel < 0 has no ray. True when the lane's ray
-// stopped on a missing brick (its state saved, to be relaunched after production).
-template <class Pool>
-__device__ bool renderRayWarp(const FrameSetup& f, const CacheView& cache, const Pool& pool,
-                              RayState* payload, int pixel, WarpMarchShared& shared) {
-  bool active = pixel >= 0;
-  Ray ray = f.primaryRay(active ? pixel % f.width : 0, active ? pixel / f.width : 0);
-  RayState s = active ? payload[pixel] : initialRayState();
-  CachedAccess<Pool, QueueRequest, PoolReads::ReadOnly> access{cache, pool, f.lod};
-  bool stopped = marchWarp(ray, f.lod, s, access, active, shared) == MarchResult::Stopped;
-  access.addCounts();
-  if (active) payload[pixel] = s;
-  return stopped;
-}
+// renderRay's march of a warp's rays (every lane of the warp calls renderRay with it).
+struct WarpRays {
+  WarpMarchShared* shared;  // the warp's
+  template <class Access>
+  __device__ MarchResult operator()(const Ray& ray, const Lod& lod, RayState& s, Access& access,
+                                    bool active) const {
+    return marchWarp(ray, lod, s, access, active, *shared);
+  }
+};
 
 }  // namespace gvdp::detail

@@ -39,8 +39,8 @@ __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     int pixel = -1;
     if (i < count) pixel = tiled ? tiledPixel(f, static_cast<int>(i)) : static_cast<int>(live[i]);
     if (tiled && pixel >= 0) graphFrame.payload[pixel] = initialRayState();
-    bool stopped = renderRayWarp(f, graphFrame.cache, graphFrame.pool, graphFrame.payload, pixel,
-                                 shared[threadIdx.x / WARP_SIZE]);
+    bool stopped = renderRay(f, graphFrame.cache, graphFrame.pool, graphFrame.payload, pixel,
+                             WarpRays{&shared[threadIdx.x / WARP_SIZE]});
     appendStopped(stopped, static_cast<uint32_t>(pixel), next, &loop->nextCount);
   }
 }

@@ -21,7 +21,8 @@ __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
   BlockTimer timer(f.timeline, TaskKind::Render);
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
   if (pixel >= 0) payload[pixel] = initialRayState();
-  bool stopped = renderRayWarp(f, cache, pool, payload, pixel, shared[threadIdx.x / WARP_SIZE]);
+  bool stopped =
+      renderRay(f, cache, pool, payload, pixel, WarpRays{&shared[threadIdx.x / WARP_SIZE]});
   appendStopped(stopped, static_cast<uint32_t>(pixel), next, &passCounters[0]);
 }
 
@@ -33,9 +34,8 @@ __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
   BlockTimer timer(f.timeline, TaskKind::Render);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
-  bool stopped =
-      renderRayWarp(f, cache, pool, payload, i < liveCount ? static_cast<int>(pixel) : -1,
-                    shared[threadIdx.x / WARP_SIZE]);
+  bool stopped = renderRay(f, cache, pool, payload, i < liveCount ? static_cast<int>(pixel) : -1,
+                           WarpRays{&shared[threadIdx.x / WARP_SIZE]});
   appendStopped(stopped, pixel, next, &passCounters[0]);
 }
 
