@@ -624,6 +624,39 @@ TEST(Cache, RunsReadInSharesAsTheWarpReadsThemChangeNoPixel) {
   }
 }
 
+// pt's warp march breaks off when the first of its rays stops (render/march_warp.cuh,
+// WarpMarchEnd::FirstStop): the others are Paused anywhere - between seeks, or part way through a
+// run - and march() resumes each from its state alone, looking its brick up again. The colours
+// are those of one uninterrupted march, bit for bit.
+TEST(Cache, MarchesPausedAnywhereResumeWithoutChangingAPixel) {
+  for (const char* scene : {"forest", "random-spheres", "perlin"}) {
+    int pause = 0;
+    expectSameMarches(
+        scene,
+        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+          return CachedAccess<BrickPool>{v, pool, lod};
+        },
+        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+          return CachedAccess<BrickPool>{v, pool, lod};
+        },
+        [&pause](const Ray& ray, const Lod& lod, RayState& s, CachedAccess<BrickPool>& access) {
+          using Seek = Marcher<CachedAccess<BrickPool>>::Seek;
+          Marcher<CachedAccess<BrickPool>> m(ray, lod, s, access);
+          int rounds = 1 + pause++ % 23;  // the warp breaks off after 1 to 23 rounds
+          for (int round = 0; round < rounds; ++round) {
+            Seek k = m.seek();
+            if (k == Seek::Moved) continue;
+            if (k != Seek::Due)
+              return k == Seek::Stopped ? MarchResult::Stopped : MarchResult::Finished;
+            int take = std::min(m.runLength(), 1 + round % 3);  // a share: part of the run
+            for (int i = 0; i < take && !s.finished(lod); ++i)
+              m.composite(access.read(m.resident, m.position()));
+          }
+          return march(ray, lod, s, access);  // Paused: resumed alone
+        });
+  }
+}
+
 // Leaving clear cells and clear bricks early changes no pixel, bit for bit, and saves most of the
 // sample steps near perlin's ground.
 TEST(Cache, ClearCellsAndBricksAreSkippedWithoutChangingAPixel) {

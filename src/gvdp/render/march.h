@@ -90,7 +90,9 @@ GVDP_HD GVDP_INLINE Vec3f voxelInBrick(Vec3f v, Vec3i brick) {
           v.z - static_cast<float>(brick.z * BRICK_WIDTH)};
 }
 
-enum class MarchResult : uint8_t { Finished, Stopped };
+// Paused: a warp's march broke off before this ray finished or stopped
+// (render/march_warp.cuh, WarpMarchEnd::FirstStop); march() resumes it from its state.
+enum class MarchResult : uint8_t { Finished, Stopped, Paused };
 
 // Access provides:
 //   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level

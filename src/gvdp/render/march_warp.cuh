@@ -6,9 +6,15 @@
 // rather than on the few whose rays happen to be sampling at a step (ncu, forest's walkthrough:
 // 10.0 -> 16.9 lanes per instruction, BENCHMARKS.md). Each sample is the same arithmetic on the
 // same values as in march(), composited in the same order: the same image, bit for bit. A lane
-// reads bricks another lane looked up: sound where the pool cannot change while the kernel runs
-// (sp, graph: PoolReads::ReadOnly, no acquire to pass on); pt's worker, which publishes bricks as
-// it runs, keeps march() (docs/DESIGN.md, "Rendering": why).
+// reads bricks another lane looked up. Where the pool cannot change while the kernel runs (sp,
+// graph: PoolReads::ReadOnly) there is no acquire to pass on. In pt's worker, which publishes
+// bricks as it runs (PoolReads::Coherent), the lane that looked a fresh brick up read its entry
+// with an acquire load (CachedAccess::resident), and the warp's barrier (__syncwarp, after the
+// round's runs are written and before they are read) orders that acquire before every lane's
+// reads of the brick: the release-acquire pair and the barrier compose (causality order), so
+// each lane reads the samples the producer wrote before publishing. pt's warp marches only until
+// its first ray stops (WarpMarchEnd::FirstStop), so that the stopped ray claims its brick, looks
+// ahead and parks at once rather than after its warp's other rays (sched/pt/pt_worker.cuh).
 #pragma once
 
 #include "gvdp/render/march.h"
@@ -42,10 +48,15 @@ __device__ inline int inclusiveWarpSum(int v, int lane) {
   return v;
 }
 
+// How long marchWarp marches: until every ray of the warp has finished or stopped (sp, graph),
+// or until the first of them stops (pt): then the rays neither finished nor stopped return
+// Paused, their state at a step march() resumes from (a seek there looks the brick up again).
+enum class WarpMarchEnd : uint8_t { AllDone, FirstStop };
+
 // Every lane of the warp calls it; an inactive lane has no ray and only reads others' samples.
 // Access provides, besides march()'s: Vec4f read(const BrickLookup&, Vec3f p) const (sample()
 // without counting) and countSamples(n).
-template <class Access>
+template <WarpMarchEnd END = WarpMarchEnd::AllDone, class Access>
 __device__ MarchResult marchWarp(const Ray& ray, const Lod& lod, RayState& s, Access& access,
                                  bool active, WarpMarchShared& shared) {
   using Seek = typename Marcher<Access>::Seek;
@@ -55,11 +66,16 @@ __device__ MarchResult marchWarp(const Ray& ray, const Lod& lod, RayState& s, Ac
   MarchResult result = MarchResult::Finished;
   bool done = !active, due = false;
   for (;;) {
+    bool stopped = false;
     if (!done && !due) {
       Seek k = m.seek();
       due = k == Seek::Due;
-      done = k == Seek::Finished || k == Seek::Stopped;
-      if (k == Seek::Stopped) result = MarchResult::Stopped;
+      stopped = k == Seek::Stopped;
+      done = k == Seek::Finished || stopped;
+      if (stopped) result = MarchResult::Stopped;
+    }
+    if constexpr (END == WarpMarchEnd::FirstStop) {
+      if (__any_sync(FULL_WARP, stopped)) return done ? result : MarchResult::Paused;
     }
     int count = due ? m.runLength() : 0;
     unsigned dueLanes = __ballot_sync(FULL_WARP, due);

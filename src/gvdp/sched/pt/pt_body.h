@@ -385,24 +385,39 @@ struct ParkOne {
   GVDP_HD bool leads(const uint32_t*) const { return true; }
 };
 
-// Algorithm 1 for one ray: marches until it finishes (true) or is parked (false). The brick it
-// stopped on is claimed after the march if it was MISSING (claimStop: the claim's ring and task
-// code stays out of the march's loop). Park is parkRay, or on the GPU a warp-aggregated version
-// of it (pt_worker.cuh). A ray that stops again - after a relaunch (`relaunched`) or a failed park
-// - first looks ahead (cache/lookahead.h), one ray for all those stopping on the same brick with it
-// (Park::leads): a chain of waits is what the lookahead cuts, and a fresh ray's first stop is
+// How ptRunRay's first march starts: on its own thread (here: the CPU's workers), or a warp's
+// rays together until the first of them stops (pt_worker.cuh: WarpStart).
+struct OwnStart {
+  template <class Access>
+  GVDP_HD MarchResult operator()(const Ray&, const Lod&, RayState&, Access&, bool) const {
+    return MarchResult::Paused;
+  }
+};
+
+// Algorithm 1 for one ray (pixel < 0: none, for a lane of a warp that has none): marches until
+// it finishes (true) or is parked (false). Its first march begins with Start (every lane of a
+// warp calls it), which may leave it Paused: march() goes on from there. The brick it stopped
+// on is claimed after the march if it was MISSING (claimStop: the claim's ring and task code
+// stays out of the march's loop). Park is parkRay, or on the GPU a warp-aggregated version of it
+// (pt_worker.cuh). A ray that stops again - after a relaunch (`relaunched`) or a failed park -
+// first looks ahead (cache/lookahead.h), one ray for all those stopping on the same brick with
+// it (Park::leads): a chain of waits is what the lookahead cuts, and a fresh ray's first stop is
 // mostly on a brick its whole tile shares.
-template <class Pool, class Park = ParkOne>
-GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bool relaunched,
-                      Park park = {}) {
+template <class Pool, class Park = ParkOne, class Start = OwnStart>
+GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool relaunched,
+                      Park park = {}, Start start = {}) {
   const FrameSetup& f = ctx.frame;
-  Ray ray = f.primaryRay(static_cast<int>(pixel) % f.width, static_cast<int>(pixel) / f.width);
-  for (bool again = relaunched;; again = true) {
-    RayState s = loadRayState(&ctx.payload[pixel]);
+  const bool live = pixel >= 0;
+  const uint32_t p = live ? static_cast<uint32_t>(pixel) : 0u;
+  Ray ray = f.primaryRay(static_cast<int>(p) % f.width, static_cast<int>(p) / f.width);
+  for (bool again = relaunched, first = true;; again = true, first = false) {
+    RayState s = live ? loadRayState(&ctx.payload[p]) : initialRayState();
     CachedAccess<Pool, NoteMiss> access{ctx.cache, pool, f.lod, NoteMiss{&ctx}};
-    MarchResult r = march(ray, f.lod, s, access);
+    MarchResult r = first ? start(ray, f.lod, s, access, live) : MarchResult::Paused;
+    if (!live) return false;
+    if (r == MarchResult::Paused) r = march(ray, f.lod, s, access);
     access.addCounts();
-    storeRayState(&ctx.payload[pixel], s);
+    storeRayState(&ctx.payload[p], s);
     if (r == MarchResult::Finished) return true;
     if (access.onMiss.missed) claimStop(ctx, access);
     if (again && park.leads(access.stopEntry)) {
@@ -410,7 +425,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, uint32_t pixel, bo
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
                                      StartAhead::lookahead(ctx, bricks), bricks);
     }
-    if (park(ctx, pixel, access.stopEntry)) return false;
+    if (park(ctx, p, access.stopEntry)) return false;
   }
 }
 

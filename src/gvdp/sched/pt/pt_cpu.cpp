@@ -134,7 +134,7 @@ class PtCpu final : public SpFrameCpu {
       uint32_t finished = 0;
       for (uint32_t i = 0; i < b.n; ++i) {
         int p = b.pixels[i];
-        if (p >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(p), b.relaunched)) ++finished;
+        if (p >= 0 && ptRunRay(ctx, pool, p, b.relaunched)) ++finished;
       }
       if (finished) {
         atomicAdd32(ctx.counter(PT_LIVE_RAYS), 0u - finished);

@@ -10,6 +10,7 @@
 #include "gvdp/cache/produce.h"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/render/brick_pool.h"
+#include "gvdp/render/march_warp.cuh"
 #include "gvdp/sched/pt/pt_body.h"
 
 namespace gvdp::detail {
@@ -96,10 +97,23 @@ struct ParkWarp {
   }
 };
 
+// ptRunRay's first march of a warp's rays: together, their samples shared out
+// (render/march_warp.cuh), until the first of them stops; each lane then marches on by itself, so
+// that a stopped ray claims its brick, looks ahead and parks at once. (Marching together to the
+// end, the stopped rays waited for the warp's others: perlin forward 417 -> 336 FPS, H100,
+// BENCHMARKS.md, session 18.)
+struct WarpStart {
+  WarpMarchShared* shared;  // the warp's
+  template <class Access>
+  __device__ MarchResult operator()(const Ray& ray, const Lod& lod, RayState& s, Access& access,
+                                    bool live) const {
+    return marchWarp<WarpMarchEnd::FirstStop>(ray, lod, s, access, live, *shared);
+  }
+};
+
 __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, int pixel,
-                                   bool relaunched, int lane) {
-  bool finished =
-      pixel >= 0 && ptRunRay(ctx, pool, static_cast<uint32_t>(pixel), relaunched, ParkWarp{});
+                                   bool relaunched, int lane, WarpMarchShared* shared) {
+  bool finished = ptRunRay(ctx, pool, pixel, relaunched, ParkWarp{}, WarpStart{shared});
   unsigned done = __ballot_sync(FULL_MASK, finished);
   if (lane == 0) {
     if (done) {
@@ -271,6 +285,7 @@ struct WarpWorker {
   const P& producer;
   int warp, lane;
   WarpSpan span;
+  WarpMarchShared* marchShared;  // the warp's
   unsigned backoff = 32;
 
   // What lane 0 finds, for every lane.
@@ -312,7 +327,7 @@ struct WarpWorker {
     return {item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, false};
   }
   __device__ void render(const Batch& b) {
-    renderLanes(ctx, pool, b.pixel, b.relaunched, lane);
+    renderLanes(ctx, pool, b.pixel, b.relaunched, lane, marchShared);
     worked();
   }
   __device__ bool help() {
@@ -352,10 +367,15 @@ template <class P>
 __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
     ptWorkerKernel(const __grid_constant__ PtContext ctx, const __grid_constant__ BrickPool pool,
                    const __grid_constant__ P producer) {
+  __shared__ WarpMarchShared marchShared[PT_WARPS];
   int lane = static_cast<int>(threadIdx.x & 31), warp = static_cast<int>(threadIdx.x >> 5);
-  WarpWorker<P> w{
-      ctx,  pool, producer,
-      warp, lane, WarpSpan{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()}};
+  WarpWorker<P> w{ctx,
+                  pool,
+                  producer,
+                  warp,
+                  lane,
+                  WarpSpan{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()},
+                  &marchShared[warp]};
   ptWorkerLoop(ctx, w);
 }
 
