@@ -385,48 +385,56 @@ struct ParkOne {
   GVDP_HD bool leads(const uint32_t*) const { return true; }
 };
 
-// How ptRunRay's first march starts: on its own thread (here: the CPU's workers), or a warp's
-// rays together until the first of them stops (pt_worker.cuh: WarpStart).
-struct OwnStart {
+// How ptRunRay marches: its one ray on the thread (the CPU's workers), or a warp's rays together,
+// until the first of them stops (pt_worker.cuh: WarpLanes).
+struct OneLane {
+  GVDP_HD bool any(bool live) const { return live; }
   template <class Access>
-  GVDP_HD MarchResult operator()(const Ray&, const Lod&, RayState&, Access&, bool) const {
-    return MarchResult::Paused;
+  GVDP_HD MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access,
+                            bool) const {
+    return detail::march(ray, lod, s, access);
   }
 };
 
 // Algorithm 1 for one ray (pixel < 0: none, for a lane of a warp that has none): marches until
-// it finishes (true) or is parked (false). Its first march begins with Start (every lane of a
-// warp calls it), which may leave it Paused: march() goes on from there. The brick it stopped
-// on is claimed after the march if it was MISSING (claimStop: the claim's ring and task code
-// stays out of the march's loop). Park is parkRay, or on the GPU a warp-aggregated version of it
+// it finishes (true) or is parked (false). The Lanes march together while any of theirs is live;
+// a march may end Paused (a warp's other ray stopped), and goes on. A ray that stops claims the
+// brick if it was MISSING (claimStop: the claim's ring and task code stays out of the march's
+// loop) and parks on its production: parkRay, or on the GPU a warp-aggregated version of it
 // (pt_worker.cuh). A ray that stops again - after a relaunch (`relaunched`) or a failed park -
 // first looks ahead (cache/lookahead.h), one ray for all those stopping on the same brick with
 // it (Park::leads): a chain of waits is what the lookahead cuts, and a fresh ray's first stop is
 // mostly on a brick its whole tile shares.
-template <class Pool, class Park = ParkOne, class Start = OwnStart>
+template <class Pool, class Park = ParkOne, class Lanes = OneLane>
 GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool relaunched,
-                      Park park = {}, Start start = {}) {
+                      Park park = {}, Lanes lanes = {}) {
   const FrameSetup& f = ctx.frame;
-  const bool live = pixel >= 0;
+  bool live = pixel >= 0, finished = false, again = relaunched;
   const uint32_t p = live ? static_cast<uint32_t>(pixel) : 0u;
   Ray ray = f.primaryRay(static_cast<int>(p) % f.width, static_cast<int>(p) / f.width);
-  for (bool again = relaunched, first = true;; again = true, first = false) {
-    RayState s = live ? loadRayState(&ctx.payload[p]) : initialRayState();
-    CachedAccess<Pool, NoteMiss> access{ctx.cache, pool, f.lod, NoteMiss{&ctx}};
-    MarchResult r = first ? start(ray, f.lod, s, access, live) : MarchResult::Paused;
-    if (!live) return false;
-    if (r == MarchResult::Paused) r = march(ray, f.lod, s, access);
-    access.addCounts();
+  RayState s = live ? loadRayState(&ctx.payload[p]) : initialRayState();
+  CachedAccess<Pool, NoteMiss> access{ctx.cache, pool, f.lod, NoteMiss{&ctx}};
+  while (lanes.any(live)) {
+    MarchResult r = lanes.march(ray, f.lod, s, access, live);
+    if (!live || r == MarchResult::Paused) continue;
     storeRayState(&ctx.payload[p], s);
-    if (r == MarchResult::Finished) return true;
+    if (r == MarchResult::Finished) {
+      finished = true;
+      live = false;
+      continue;
+    }
     if (access.onMiss.missed) claimStop(ctx, access);
+    access.onMiss.missed = false;
     if (again && park.leads(access.stopEntry)) {
       uint32_t bricks = lookaheadBricks(ctx);
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
                                      StartAhead::lookahead(ctx, bricks), bricks);
     }
-    if (park(ctx, p, access.stopEntry)) return false;
+    live = !park(ctx, p, access.stopEntry);
+    again = true;
   }
+  if (pixel >= 0) access.addCounts();
+  return finished;
 }
 
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all

@@ -97,23 +97,24 @@ struct ParkWarp {
   }
 };
 
-// ptRunRay's first march of a warp's rays: together, their samples shared out
-// (render/march_warp.cuh), until the first of them stops; each lane then marches on by itself, so
-// that a stopped ray claims its brick, looks ahead and parks at once. (Marching together to the
-// end, the stopped rays waited for the warp's others: perlin forward 417 -> 336 FPS, H100,
-// BENCHMARKS.md, session 18.)
-struct WarpStart {
+// ptRunRay's march of a warp's rays: together, their samples shared out (render/march_warp.cuh),
+// until the first of them stops; the stopped rays then claim, look ahead and park at once, and
+// the others march on together (a failed park rejoins them). (Marching together until every ray
+// had stopped or ended, the stopped ones waited for the others: perlin forward 417 -> 336 FPS;
+// each lane marching on by itself after the first stop: FPS x0.79; H100, BENCHMARKS.md.)
+struct WarpLanes {
   WarpMarchShared* shared;  // the warp's
+  __device__ bool any(bool live) const { return __any_sync(FULL_MASK, live); }
   template <class Access>
-  __device__ MarchResult operator()(const Ray& ray, const Lod& lod, RayState& s, Access& access,
-                                    bool live) const {
+  __device__ MarchResult march(const Ray& ray, const Lod& lod, RayState& s, Access& access,
+                               bool live) const {
     return marchWarp<WarpMarchEnd::FirstStop>(ray, lod, s, access, live, *shared);
   }
 };
 
 __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, int pixel,
                                    bool relaunched, int lane, WarpMarchShared* shared) {
-  bool finished = ptRunRay(ctx, pool, pixel, relaunched, ParkWarp{}, WarpStart{shared});
+  bool finished = ptRunRay(ctx, pool, pixel, relaunched, ParkWarp{}, WarpLanes{shared});
   unsigned done = __ballot_sync(FULL_MASK, finished);
   if (lane == 0) {
     if (done) {
