@@ -1,17 +1,17 @@
 // The march of a warp's 32 rays with their samples shared out (GPU; sp's and graph's render
-// passes). Each round, the lanes whose ray has no sample due seek its next run (render/march.h:
-// Marcher::seek, one brick decision, lanes deciding together); then the warp's due samples are
-// shared out - every lane reads up to two, whatever ray they belong to - and each ray's lane
-// composites its own in order. The reads, most of a march's instructions, then run on most lanes
-// rather than on the few whose rays happen to be sampling at a step (ncu, forest's walkthrough:
-// 10.0 -> 16.9 lanes per instruction, BENCHMARKS.md). Each sample is the same arithmetic on the
-// same values as in march(), composited in the same order: the same image, bit for bit. A lane
-// reads bricks another lane looked up. Where the pool cannot change while the kernel runs (sp,
-// graph: PoolReads::ReadOnly) there is no acquire to pass on. In pt's worker, which publishes
-// bricks as it runs (PoolReads::Coherent), the lane that looked a fresh brick up read its entry
-// with an acquire load (CachedAccess::resident), and the warp's barrier (__syncwarp, after the
-// round's runs are written and before they are read) orders that acquire before every lane's
-// reads of the brick: the release-acquire pair and the barrier compose (causality order), so
+// passes, pt's worker). Each round, the lanes whose ray has no sample due seek its next run
+// (render/march.h: Marcher::seek, one brick decision, lanes deciding together); then the warp's due
+// samples are shared out - every lane reads up to two, whatever ray they belong to - and each ray's
+// lane composites its own in order. The reads, most of a march's instructions, then run on most
+// lanes rather than on the few whose rays happen to be sampling at a step (ncu, forest's
+// walkthrough: 10.0 -> 16.9 lanes per instruction, BENCHMARKS.md). Each sample is the same
+// arithmetic on the same values as in march(), composited in the same order: the same image, bit
+// for bit. A lane reads bricks another lane looked up. Where the pool cannot change while the
+// kernel runs (sp, graph: PoolReads::ReadOnly) there is no acquire to pass on. In pt's worker,
+// which publishes bricks as it runs (PoolReads::Coherent), the lane that looked a fresh brick up
+// read its entry with an acquire load (CachedAccess::resident), and the warp's barrier (__syncwarp,
+// after the round's runs are written and before they are read) orders that acquire before every
+// lane's reads of the brick: the release-acquire pair and the barrier compose (causality order), so
 // each lane reads the samples the producer wrote before publishing. pt's warp marches only until
 // its first ray stops (WarpMarchEnd::FirstStop), so that the stopped ray claims its brick, looks
 // ahead and parks at once rather than after its warp's other rays (sched/pt/pt_worker.cuh).
