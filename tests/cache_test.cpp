@@ -529,6 +529,11 @@ struct NoRuns : CachedAccess<BrickPool> {
   }
 };
 
+// CachedAccess as it is (expectSameMarches' makeA, makeB).
+CachedAccess<BrickPool> plainAccess(const CacheView& v, const BrickPool& pool, const Lod& lod) {
+  return {v, pool, lod};
+}
+
 // Fills the cache with what the rays of frame f ask for, then marches every ray twice from the
 // full cache, with `a` and with `b` (accesses built from the view): the colours, bit for bit.
 struct MarchOf {
@@ -576,14 +581,10 @@ void expectSameMarches(const char* scene, A makeA, B makeB, MarchB marchB = {},
 // march samples, bit for bit, faces included.
 TEST(Cache, RunsOfSamplesChangeNoPixel) {
   for (const char* scene : {"forest", "random-spheres"})
-    expectSameMarches(
-        scene,
-        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
-          return CachedAccess<BrickPool>{v, pool, lod};
-        },
-        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
-          return NoRuns{{v, pool, lod}};
-        });
+    expectSameMarches(scene, plainAccess,
+                      [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
+                        return NoRuns{{v, pool, lod}};
+                      });
 }
 
 // marchWarp's use of Marcher (render/march_warp.cuh): a ray seeks only when nothing of its run is
@@ -594,13 +595,7 @@ TEST(Cache, RunsReadInSharesAsTheWarpReadsThemChangeNoPixel) {
   for (const char* scene : {"forest", "random-spheres"}) {
     int share = 0;
     expectSameMarches(
-        scene,
-        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
-          return CachedAccess<BrickPool>{v, pool, lod};
-        },
-        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
-          return CachedAccess<BrickPool>{v, pool, lod};
-        },
+        scene, plainAccess, plainAccess,
         [&share](const Ray& ray, const Lod& lod, RayState& s, CachedAccess<BrickPool>& access) {
           using Seek = Marcher<CachedAccess<BrickPool>>::Seek;
           Marcher<CachedAccess<BrickPool>> m(ray, lod, s, access);
@@ -632,13 +627,7 @@ TEST(Cache, MarchesPausedAnywhereResumeWithoutChangingAPixel) {
   for (const char* scene : {"forest", "random-spheres", "perlin"}) {
     int pause = 0;
     expectSameMarches(
-        scene,
-        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
-          return CachedAccess<BrickPool>{v, pool, lod};
-        },
-        [](const CacheView& v, const BrickPool& pool, const Lod& lod) {
-          return CachedAccess<BrickPool>{v, pool, lod};
-        },
+        scene, plainAccess, plainAccess,
         [&pause](const Ray& ray, const Lod& lod, RayState& s, CachedAccess<BrickPool>& access) {
           using Seek = Marcher<CachedAccess<BrickPool>>::Seek;
           Marcher<CachedAccess<BrickPool>> m(ray, lod, s, access);

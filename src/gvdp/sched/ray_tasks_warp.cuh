@@ -7,6 +7,13 @@
 
 namespace gvdp::detail {
 
+// The launch shape of render kernels that march with WarpRays (sp's and graph's): blocks of 4
+// warps, 8 of them an SM at 64 registers (`__launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)`:
+// 32 bytes of spills; unbounded at 83 registers, 24 warps an SM, x0.94 slower; one-warp blocks
+// x1.03; BENCHMARKS.md, sessions 18 and 19), and each warp's shared memory for the march.
+constexpr int RENDER_BLOCK = 128, RENDER_BLOCKS_PER_SM = 8;
+constexpr int RENDER_BLOCK_WARPS = RENDER_BLOCK / WARP_SIZE;
+
 // renderRay's march of a warp's rays (every lane of the warp calls renderRay with it).
 struct WarpRays {
   WarpMarchShared* shared;  // the warp's

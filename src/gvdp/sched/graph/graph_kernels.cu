@@ -14,14 +14,10 @@
 namespace gvdp::detail {
 namespace {
 
-constexpr int RENDER_BLOCK = 128;
-// 8 blocks of 4 warps fill an SM at 64 registers (render/march_warp.cuh).
-constexpr int RENDER_BLOCKS_PER_SM = 8;
-
 // Pass 0 covers the screen in 8x8 tiles from fresh states; later passes the live list.
 __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     graphRenderKernel(const GraphFrame* __restrict__ frame, GraphLoop* loop) {
-  __shared__ WarpMarchShared shared[RENDER_BLOCK / WARP_SIZE];
+  __shared__ WarpMarchShared shared[RENDER_BLOCK_WARPS];
   const GraphFrame& graphFrame = blockCopy(frame);
   BlockTimer timer(graphFrame.frame.timeline, TaskKind::Render);
   const FrameSetup& f = graphFrame.frame;

@@ -10,14 +10,10 @@
 namespace gvdp::detail {
 namespace {
 
-constexpr int RENDER_BLOCK = 128;
-// 8 blocks of 4 warps fill an SM at 64 registers (render/march_warp.cuh).
-constexpr int RENDER_BLOCKS_PER_SM = 8;
-
 __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                           uint32_t* next, uint32_t* passCounters) {
-  __shared__ WarpMarchShared shared[RENDER_BLOCK / WARP_SIZE];
+  __shared__ WarpMarchShared shared[RENDER_BLOCK_WARPS];
   BlockTimer timer(f.timeline, TaskKind::Render);
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
   if (pixel >= 0) payload[pixel] = initialRayState();
@@ -30,7 +26,7 @@ __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
                      const uint32_t* live, uint32_t liveCount, uint32_t* next,
                      uint32_t* passCounters) {
-  __shared__ WarpMarchShared shared[RENDER_BLOCK / WARP_SIZE];
+  __shared__ WarpMarchShared shared[RENDER_BLOCK_WARPS];
   BlockTimer timer(f.timeline, TaskKind::Render);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
