@@ -1,21 +1,35 @@
 #!/usr/bin/env bash
-# On a GPU machine: ncu's per-instruction counts and stall samples of sp's first render pass
-# (walkthrough frame 20, 1500x1000), and each instruction's source line (nvdisasm -g on the
-# binary's cubins; the binary is built with -lineinfo): $OUT/sass_SCENE.csv.gz and
-# $OUT/lines_SCENE.txt.gz, which scripts/ncu_lines.py joins (per source line) where they land.
-# Usage: scripts/ncu_lines.sh BIN SCENE   (BIN an absolute path; BENCHMARKS.md, session 19)
+# On a GPU machine: ncu's per-instruction counts and stall samples of a render kernel at
+# 1500x1000 (sp: its first render pass; pt: its worker kernel), and each instruction's source
+# line (nvdisasm -g on the binary's cubins; the binary is built with -lineinfo):
+# $OUT/sass_SCENE_SCHED.csv.gz and $OUT/lines_SCENE_SCHED.txt.gz, which scripts/ncu_lines.py joins
+# (per source line) where they land. WHEN: frame20 (frame 20 of `gvdp render`'s walkthrough, the
+# default) or floor (the bench's fourth floor frame: the same pose again from a full cache).
+# Usage: scripts/ncu_lines.sh BIN SCENE [sp|pt] [frame20|floor]   (BIN an absolute path)
 set -uo pipefail
-bin=$1 scene=$2
-ncu --section SourceCounters --section WarpStateStats --kernel-name regex:firstRenderPassKernel --launch-skip 20 --launch-count 1 -o /tmp/rep_$scene -f \
-  "$bin" render --backend cuda --scheduler sp --scene "$scene" --movement walkthrough --frames 21 \
-  --width 1500 --height 1000 --out /tmp/ncu_out >/tmp/ncu_$scene.log 2>&1 || tail -n 5 /tmp/ncu_$scene.log
+bin=$1 scene=$2 sched=${3:-sp} when=${4:-frame20}
+case $sched in
+  sp) kernel=firstRenderPassKernel ;;
+  pt) kernel=ptWorkerKernel ;;
+  *) echo "ncu_lines.sh: scheduler '$sched' is not sp or pt" >&2 && exit 2 ;;
+esac
+name=${scene}_$sched
+rep=/tmp/rep_$name
+case $when in
+  # One such kernel a frame: 6 warm-up and 32 measured frames, then the floor's.
+  floor) skip=41 run=(bench --backend cuda --schedulers "$sched" --scenes "$scene" --movements walkthrough --out /tmp/ncu_lines.json) ;;
+  frame20) skip=20 run=(render --backend cuda --scheduler "$sched" --scene "$scene" --movement walkthrough --frames 21 --width 1500 --height 1000 --out /tmp/ncu_out) ;;
+  *) echo "ncu_lines.sh: '$when' is not frame20 or floor" >&2 && exit 2 ;;
+esac
+ncu --section SourceCounters --section WarpStateStats --kernel-name "regex:$kernel" --launch-skip $skip --launch-count 1 -o $rep -f \
+  "$bin" "${run[@]}" >/tmp/ncu_$name.log 2>&1 || tail -n 5 /tmp/ncu_$name.log
 mkdir -p "${OUT:=out/ncu_lines}"
-ncu -i /tmp/rep_$scene.ncu-rep --page source --csv --print-source sass 2>&1 | gzip > $OUT/sass_$scene.csv.gz
+ncu -i $rep.ncu-rep --page source --csv --print-source sass 2>&1 | gzip > $OUT/sass_$name.csv.gz
 d=$(mktemp -d); (cd $d && cuobjdump -xelf all "$bin" >/dev/null 2>&1)
 for f in $d/*.cubin; do
-  nvdisasm -g "$f" 2>/dev/null | awk '
-    /^[ \t]*\.section/ { insec = ($0 ~ /firstRenderPassKernel/); if (insec) print "#SECTION", $2 }
+  nvdisasm -g "$f" 2>/dev/null | awk -v k="$kernel" '
+    /^[ \t]*\.section/ { insec = index($0, ".text.") && index($0, k); if (insec) print "#SECTION", $2 }
     insec && /\/\/## File/ { loc = $0; sub(/^.*\/\/## File "/, "", loc); sub(/".*line /, ":", loc); sub(/[ ,].*$/, "", loc) }
     insec && match($0, /\/\*[0-9a-f]+\*\//) { print substr($0, RSTART + 2, RLENGTH - 4), loc }'
-done | gzip > $OUT/lines_$scene.txt.gz
+done | gzip > $OUT/lines_$name.txt.gz
 ls -la "$OUT"

@@ -273,4 +273,24 @@ TEST(GpuPt, PrefetchChangesWhatIsProducedNeverTheImage) {
   }
 }
 
+// The prefetch predicts the next frame from the camera's last step: a still camera's next frame
+// needs only the bricks this frame's rays leave resident, so it prefetches nothing; a camera that
+// moved or turned does.
+TEST(PtPrefetch, NoneForAStillCamera) {
+  CameraPose pose{{1.0, 2.0, -5.0}, 0.3f, -0.1f}, moved = pose, turned = pose;
+  moved.position.x += 0.5;
+  turned.yaw += 0.01f;
+  FrameSetup previous = makeFrame(pose, 0.01f, 320, 200, 8, 4);
+  auto items = [&](const CameraPose& p) {
+    PtContext ctx{};
+    setPrefetch(ctx, previous, &previous, 4);
+    EXPECT_EQ(ctx.prefetchItems, 0u) << "not after the same frame";
+    setPrefetch(ctx, makeFrame(p, 0.01f, 320, 200, 8, 5), &previous, 4);
+    return ctx.prefetchItems;
+  };
+  EXPECT_EQ(items(pose), 0u);
+  EXPECT_EQ(items(moved), 80u * 50u);
+  EXPECT_EQ(items(turned), 80u * 50u);
+}
+
 }  // namespace gvdp::detail

@@ -167,4 +167,32 @@ TEST(Timeline, GpuRecordsAreWellFormedForSpAndDp) {
   }
 }
 
+// `timeline --again`'s sequence: the last pose once more, from the cache its frame filled - the
+// render-only floor: the same image, bit for bit, and not one brick produced.
+TEST(Sequence, AgainRendersTheLastPoseFromTheCacheItFilled) {
+  for (SchedulerKind kind : {SchedulerKind::Sp, SchedulerKind::Pt}) {
+    SequenceOptions o;
+    o.scene = "random-spheres";
+    o.width = 64;
+    o.height = 40;
+    o.frames = 3;
+    o.again = 1;
+    o.scheduler = {Backend::Cpu, kind};
+    std::vector<Image> images;
+    std::vector<FrameStats> stats;
+    renderSequence(o, [&](const Image& im, const FrameStats& s) {
+      images.push_back(im);
+      stats.push_back(s);
+    });
+    ASSERT_EQ(images.size(), 4u);
+    EXPECT_GT(stats[2].cache.produced, 0u) << "the last pose's frame produced bricks";
+    EXPECT_EQ(stats[3].cache.produced, 0u) << schedulerName(kind);
+    EXPECT_EQ(images[3].pixels, images[2].pixels) << schedulerName(kind);
+    EXPECT_EQ(stats[3].unfinishedPixels, 0);
+  }
+  SequenceOptions bad;
+  bad.again = -1;
+  EXPECT_THROW(validate(bad), InputError);
+}
+
 }  // namespace gvdp::detail

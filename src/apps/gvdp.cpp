@@ -378,8 +378,9 @@ int runRender(const RenderFlags& flags) {
   return 0;
 }
 
-// gvdp timeline: renders frames 0..K and draws the timeline of frame K.
-int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
+// gvdp timeline: renders frames 0..K and draws the timeline of frame K, or (again) of frame K's
+// pose rendered once more from the cache frame K left: the render-only floor (`gvdp bench`'s).
+int runTimeline(const RenderFlags& flags, int frame, bool again, const std::string& png,
                 const std::string& trace) {
   GVDP_INPUT_CHECK(!flags.frames,
                    "timeline takes --frame K (it renders frames 0..K), not --frames ",
@@ -388,6 +389,7 @@ int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
   RenderFlags f = flags;
   f.frames = frame + 1;
   SequenceOptions o = toOptions(f);
+  o.again = again ? 1 : 0;
   o.scheduler.timeline = true;
   OutputPaths outputs;
   outputs.file(png);
@@ -399,15 +401,15 @@ int runTimeline(const RenderFlags& flags, int frame, const std::string& png,
   std::string title = std::string(schedulerName(o.scheduler.kind)) + " on " +
                       std::string(backendName(o.scheduler.backend)) + ", " + worldName(o) + " " +
                       std::string(movementName(o.movement)) + " frame " + std::to_string(frame) +
-                      ", " + std::to_string(o.width) + "x" + std::to_string(o.height) + ", " +
-                      std::to_string(last.ms) + " ms";
+                      (again ? " again" : "") + ", " + std::to_string(o.width) + "x" +
+                      std::to_string(o.height) + ", " + std::to_string(last.ms) + " ms";
   writePng(timelineImage(t.records, t.lanes, title), png);
   if (!trace.empty()) {
     std::ofstream json(trace);
     json << chromeTraceJson(t.records, t.lanes);
     GVDP_INPUT_CHECK(json.good(), "cannot write '", trace, "'");
   }
-  std::printf("frame %d: %.2f ms; %s%s\nwrote %s%s%s\n", frame, last.ms,
+  std::printf("frame %d%s: %.2f ms; %s%s\nwrote %s%s%s\n", frame, again ? " again" : "", last.ms,
               timelineSummary(timelineStats(t.records, t.lanes)).c_str(),
               t.overflow ? " (records overflowed)" : "", png.c_str(), trace.empty() ? "" : ", ",
               trace.c_str());
@@ -676,6 +678,7 @@ int run(int argc, char** argv) {
   RenderFlags timeline;
   int timelineFrame = 5;
   std::string timelinePng = "timeline.png", timelineTrace;
+  bool timelineAgain = false;
   CLI::App* timelineCmd =
       app.add_subcommand("timeline", "draw the GPU-cores timeline of one frame (paper Fig. 5)");
   addRenderFlags(timelineCmd, timeline, true);
@@ -683,6 +686,9 @@ int run(int argc, char** argv) {
                           "the frame to record (frames before it warm up)");
   timelineCmd->add_option("--out", timelinePng, "timeline picture (default timeline.png)");
   timelineCmd->add_option("--trace", timelineTrace, "Chrome trace-event JSON (Perfetto)");
+  timelineCmd->add_flag("--again", timelineAgain,
+                        "record the frame's pose rendered once more, from the cache the frame "
+                        "filled (the render-only floor)");
   BenchFlags bench;
   CLI::App* benchCmd =
       app.add_subcommand("bench", "the paper's Table 1: scenes x movements x schedulers");
@@ -756,7 +762,7 @@ int run(int argc, char** argv) {
   }
   if (renderCmd->parsed()) return runRender(render);
   if (timelineCmd->parsed())
-    return runTimeline(timeline, timelineFrame, timelinePng, timelineTrace);
+    return runTimeline(timeline, timelineFrame, timelineAgain, timelinePng, timelineTrace);
   if (benchCmd->parsed()) return runBenchCommand(bench);
   if (serveCmd->parsed()) return runServe(serve);
   if (scenesCmd->parsed()) return runScenes();

@@ -16,6 +16,8 @@ void validate(const SequenceOptions& o) {
   validate(static_cast<const RendererOptions&>(o));
   GVDP_INPUT_CHECK(o.frames >= 1 && o.frames <= 1000000, "bad --frames ", o.frames,
                    " (expected 1..1000000)");
+  GVDP_INPUT_CHECK(o.again >= 0 && o.again <= 1000, "bad repeat count ", o.again,
+                   " (expected 0..1000)");
   const double LIMIT = 1e8;  // int32 brick coordinates at level 0 hold about 2.7e8 units
   GVDP_INPUT_CHECK(
       std::abs(o.origin.x) < LIMIT && std::abs(o.origin.y) < LIMIT && std::abs(o.origin.z) < LIMIT,
@@ -93,8 +95,8 @@ MemoryReport renderSequence(const SequenceOptions& o,
   std::unique_ptr<Renderer> renderer = makeSequenceRenderer(o);
   renderer->onTile(onTile);
   Image image;
-  for (int f = 0; f < o.frames; ++f) {
-    FrameStats stats = renderer->render(poseOf(o, f), image);
+  for (int f = 0; f < o.frames + o.again; ++f) {
+    FrameStats stats = renderer->render(poseOf(o, f < o.frames ? f : o.frames - 1), image);
     onFrame(image, stats);
   }
   return renderer->memory();

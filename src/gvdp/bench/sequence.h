@@ -19,6 +19,7 @@ struct SequenceOptions : RendererOptions {
   float lattice = 0;  // the mesh's copies in x and z this far apart (0: one model)
   Movement movement = Movement::Walkthrough;
   int frames = 8;
+  int again = 0;          // the last pose rendered this many times more (from the cache it filled)
   Vec3d origin{0, 0, 0};  // added to the scene's start position
 };
 

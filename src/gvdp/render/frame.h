@@ -36,6 +36,14 @@ struct FrameSetup {
   GVDP_HD int pixelCount() const { return width * height; }
 };
 
+// Whether two frames see from the same place in the same direction.
+inline bool sameView(const FrameSetup& a, const FrameSetup& b) {
+  auto same = [](auto p, auto q) { return p.x == q.x && p.y == q.y && p.z == q.z; };
+  return same(a.localOrigin, b.localOrigin) && same(a.eye, b.eye) &&
+         same(a.basis.forward, b.basis.forward) && same(a.basis.right, b.basis.right) &&
+         same(a.basis.up, b.basis.up);
+}
+
 // The frame after `current` as the camera's motion from `previous` predicts it: the same step
 // and turn again (the basis extrapolated and made orthonormal), in `current`'s local coordinates,
 // size and LOD. What pt's idle-time prefetch marches.

@@ -71,9 +71,10 @@ enum PtCounter : int {
   PT_RELAUNCHED,     // rays queued again by a production
   PT_RENDER_TASKS,   // render tasks run (fresh and relaunched)
   PT_LOOKAHEAD,      // bricks claimed by lookaheads
-  PT_LIVE_RAYS,      // rays not finished (prefetch only while some wait on a production)
+  PT_LIVE_RAYS,      // rays not finished (the prefetch runs only while some are)
   PT_NEXT_PREFETCH,  // next prefetch ray
   PT_PREFETCHES,     // bricks claimed by the prefetch
+  PT_OPEN,           // productions with chunks left for helpers (pt_worker.cuh: openProduction)
   PT_COUNTER_COUNT
 };
 
@@ -155,6 +156,7 @@ struct PtProductions {
   uint32_t* nonEmpty;  // nonzero once a chunk found a non-empty sample
   uint32_t* open;      // a bit per worker warp
   uint32_t openWords;
+  uint32_t* openCount;  // the bits set (ctx.counter(PT_OPEN)), read before a search
 };
 
 struct PtContext {
@@ -332,14 +334,17 @@ GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) 
 }
 
 // The first of the next PT_BATCH prefetch rays, prefetchItems when none is to be taken: none
-// left, or no ray of the frame waiting on a production (the prefetch fills the frame's tail, a
-// wait on bricks; a frame whose rays wait for nothing ends without it: with prefetching in the
-// last render tasks' shadow too, the H100 floors of pt rose 5-21%).
+// left, or no ray live. The prefetch fills the idle time of a frame's tail, that of a frame with
+// no production too: it predicts the bricks of the next frame, which may have many. Only while a
+// ray waited on a production (as written here until session 20, but read as the difference of
+// PT_LIVE_WORK and PT_LIVE_RAYS, two loads apart while rays finished in between, that showed
+// tasks in most tails without any): pt's floors x0.96, but aligned-spheres' walkthrough 417 ->
+// 364 FPS, its 99th percentile 12 -> 20 ms (the prefetch in frames without production halved);
+// ending the prefetch's marches with the frame's last ray: 381 FPS (H100, BENCHMARKS.md).
 GVDP_HD GVDP_INLINE uint32_t claimPrefetchItems(const PtContext& ctx) {
   if (ctx.prefetchItems == 0 || loadRelaxed32(ctx.counter(PT_NEXT_PREFETCH)) >= ctx.prefetchItems)
     return ctx.prefetchItems;
-  uint32_t rays = loadRelaxed32(ctx.counter(PT_LIVE_RAYS));
-  if (rays == 0 || loadRelaxed32(ctx.counter(PT_LIVE_WORK)) == rays) return ctx.prefetchItems;
+  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) == 0) return ctx.prefetchItems;
   uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_PREFETCH), static_cast<uint32_t>(PT_BATCH));
   return first < ctx.prefetchItems ? first : ctx.prefetchItems;
 }
@@ -581,7 +586,8 @@ inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
   c[PT_LIVE_WORK * PT_COUNTER_STRIDE] = c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = layout.pixels;
 }
 
-// A frame's prefetch (none: stride 0, a tile, a cold cache, or no frame just before it): rays of
+// A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from
+// the same view): rays of
 // the next frame as the motion from `previous` predicts it, one per stride x stride pixels, the
 // rows taken in an order that spreads a partial prefetch over the screen (a step about 0.618 of
 // the rows, prime to them).
@@ -590,8 +596,8 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
   ctx.prefetchItems = 0;
   if (stride == 0 || previous == nullptr || f.coldCache || f.width != f.imageWidth ||
       f.height != f.imageHeight || previous->frameIndex + 1 != f.frameIndex ||
-      previous->width != f.width || previous->height != f.height)
-    return;
+      previous->width != f.width || previous->height != f.height || sameView(*previous, f))
+    return;  // a still camera: the next frame needs the bricks this frame's rays leave resident
   ctx.prefetchFrame = predictNextFrame(*previous, f);
   ctx.prefetchStride = stride;
   uint32_t columns = (static_cast<uint32_t>(f.width) + stride - 1) / stride;

@@ -91,9 +91,9 @@ class PtCuda final : public SpFrameCuda {
                                   lookahead_, tailLookahead_);
     setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
     uint32_t* words = productionCounters_.data();
-    ctx.productions = {stage_.data(),       productionKey_.data(), words,
-                       words + workers_,    words + 2 * workers_,  words + 3 * workers_,
-                       (workers_ + 31) / 32};
+    ctx.productions = {stage_.data(),        productionKey_.data(), words,
+                       words + workers_,     words + 2 * workers_,  words + 3 * workers_,
+                       (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
     launchPtRingsInit(ctx, layout_, stream());
     return ctx;
   }

@@ -173,7 +173,10 @@ __device__ void produceChunks(const P& producer, const PtProductions& pp, uint32
     c = __shfl_sync(FULL_MASK, c, 0);
     if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return;
     // The last chunk is taken: no more help (helpers would spin on an exhausted production).
-    if (lane == 0 && c == PRODUCE_CHUNKS - 1) atomicAnd(&pp.open[owner / 32], ~(1u << owner % 32));
+    if (lane == 0 && c == PRODUCE_CHUNKS - 1) {
+      atomicAnd(&pp.open[owner / 32], ~(1u << owner % 32));
+      atomicSub(pp.openCount, 1u);
+    }
     __syncwarp();  // lane 0's acquire before every lane's read of the key
     BrickKey key = loadBrickKey(&pp.key[owner]);
     int s = static_cast<int>(c) * PRODUCE_CHUNK + lane;
@@ -210,6 +213,7 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
       handOver(&pp.done[me], 0u);
       __threadfence();  // release: key and counters before the first claim
       atomicExch(&pp.next[me], 0u);
+      atomicAdd(pp.openCount, 1u);  // before the bit, so before any helper's decrement
       __threadfence();
       atomicOr(&pp.open[me / 32], 1u << me % 32);
     }
@@ -257,14 +261,22 @@ __device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P
 
 // An open production for an idle warp to help: one of its own block's, else the first found in
 // the grid's `open` bits, read from its own block's word on (blocks start their search apart).
+// The search runs only while the count of open productions is nonzero: an idle warp's poll is
+// then a few loads (in a floor frame of random-spheres, H100, the search of every poll was 17% of
+// the worker kernel's instructions, issued beside the warps still marching).
 __device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
   const uint32_t first = workerOf(0), home = first / 32;
-  uint32_t own = 0;
-  if (lane == 0) own = loadRelaxed32(&pp.open[home]) >> first % 32 & ((1u << PT_WORKER_WARPS) - 1u);
+  uint32_t own = 0, count = 0;
+  if (lane == 0) {
+    count = loadRelaxed32(pp.openCount);
+    own = loadRelaxed32(&pp.open[home]) >> first % 32 & ((1u << PT_WORKER_WARPS) - 1u);
+  }
   own = __shfl_sync(FULL_MASK, own, 0);
   if (own) return first + static_cast<uint32_t>(__ffs(static_cast<int>(own)) - 1);
+  if (__shfl_sync(FULL_MASK, count, 0) == 0) return NO_PRODUCTION;
   for (uint32_t base = 0; base < pp.openWords; base += 32) {
-    uint32_t k = base + static_cast<uint32_t>(lane), w = (home + k) % pp.openWords;
+    uint32_t k = base + static_cast<uint32_t>(lane), w = home + k;
+    w = w < pp.openWords ? w : w - pp.openWords;  // (home + k) mod openWords: both below it
     uint32_t bits = k < pp.openWords ? loadRelaxed32(&pp.open[w]) : 0u;
     unsigned any = __ballot_sync(FULL_MASK, bits != 0u);
     if (any) {
