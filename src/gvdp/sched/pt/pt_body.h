@@ -18,13 +18,13 @@
 // one is ready (never waited for): without an id the brick stays MISSING for a ray to claim.
 //
 // Idle-time prefetch (`prefetch`, DEFAULT_PREFETCH; 0: off): a worker with nothing to take and no
-// production to help, while rays of the frame wait on productions (its tail: chains of bricks),
-// marches rays of the next frame as the camera's motion predicts it (predictNextFrame), one per
-// prefetch x prefetch pixels, as lookaheads from their start (coarser stand-ins, no waiting, at
-// most MAX_LATE_CLAIMS claims a ray), with ids from a third ring (`prefetchIds`), and only while
-// half the frame's free slots are left (the lookahead's claims too): the frame's own productions
-// never fail for them. A prefetched brick is stamped for the next frame
-// (markPrefetched), whose end counts whether a ray used it. Nothing is composited.
+// production to help, while rays of the frame are live (its tail; claimPrefetchItems), unless the
+// camera stands still (setPrefetch), marches rays of the next frame as the camera's motion predicts
+// it (predictNextFrame), one per prefetch x prefetch pixels, as lookaheads from their start
+// (coarser stand-ins, no waiting, at most MAX_LATE_CLAIMS claims a ray), with ids from a third ring
+// (`prefetchIds`), and only while half the frame's free slots are left (the lookahead's claims
+// too): the frame's own productions never fail for them. A prefetched brick is stamped for the next
+// frame (markPrefetched), whose end counts whether a ray used it. Nothing is composited.
 //
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
 // so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
