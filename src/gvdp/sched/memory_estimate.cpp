@@ -7,6 +7,7 @@
 #include "gvdp/render/march.h"
 #include "gvdp/sched/dp/dp.h"
 #include "gvdp/sched/pt/pt_body.h"
+#include "gvdp/sched/tile_order.h"
 
 namespace gvdp::detail {
 namespace {
@@ -60,7 +61,8 @@ void addCpuRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
 }
 
 // The same on CUDA (SpBuffersCuda: payload, two live lists and the image; *_cuda.cpp).
-void addCudaRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) {
+void addCudaRayItems(const SchedulerOptions& o, const FrameSetup& f, MemoryReport& m) {
+  size_t pixels = static_cast<size_t>(f.pixelCount());
   if (o.kind == SchedulerKind::Direct) {
     m.push_back({"device_image", pixels * sizeof(uint32_t)});
     return;
@@ -70,6 +72,8 @@ void addCudaRayItems(const SchedulerOptions& o, size_t pixels, MemoryReport& m) 
   if (o.kind == SchedulerKind::Dp) m.push_back({"ray_locks", pixels * sizeof(uint32_t)});
   if (o.kind == SchedulerKind::Pt)
     m.push_back({"pt_queues_and_wait_lists", PtLayout{n, PT_CUDA_WORKER_WARPS}.bytes()});
+  if (o.kind == SchedulerKind::Sp || o.kind == SchedulerKind::Pt)  // and CUB's sort's scratch
+    m.push_back({"tile_order", size_t{5} * orderBlockCount(f) * sizeof(uint32_t)});
 }
 
 }  // namespace
@@ -79,7 +83,7 @@ MemoryReport memoryEstimate(const SchedulerOptions& o, const FrameSetup& f) {
   MemoryReport m;
   if (o.kind != SchedulerKind::Direct) m = cacheItems(o, f);
   if (o.backend == Backend::Cuda) {
-    addCudaRayItems(o, pixels, m);
+    addCudaRayItems(o, f, m);
   } else {
     addCpuRayItems(o, pixels, m);
     m.push_back({"image", pixels * sizeof(uint32_t)});  // the image every frame lands in

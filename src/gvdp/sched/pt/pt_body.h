@@ -38,6 +38,7 @@
 
 #include "gvdp/cache/lookahead.h"
 #include "gvdp/sched/ray_tasks.h"
+#include "gvdp/sched/tile_order.h"
 
 namespace gvdp::detail {
 
@@ -179,7 +180,8 @@ struct PtContext {
   uint32_t* waitHead;         // per task id: LIST_END, a pixel, or LIST_CLOSED
   uint32_t* waitNext;         // per pixel
   uint32_t* counters;         // PtCounter, PT_COUNTER_STRIDE apart
-  uint32_t itemCount;         // items of the tiled screen (tileCount * 64)
+  uint32_t itemCount;         // items of the screen (tile_order.h: orderedItemCount)
+  TileOrder tiles;            // their order (the GPU's; row-major on the CPU)
   PtProductions productions;  // the GPU's (pt_worker.cuh)
 
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
@@ -520,14 +522,18 @@ GVDP_HD GVDP_INLINE uint32_t ringCapacity(uint32_t n) {
 struct PtLayout {
   uint32_t pixels, workers;
 
-  uint32_t freeIds() const { return pixels + workers; }  // ids of freeIds; then the lookahead's
-  uint32_t firstPrefetchId() const { return freeIds() + PT_LOOKAHEAD_IDS; }  // then the prefetch's
-  uint32_t taskIds() const { return firstPrefetchId() + PT_PREFETCH_IDS; }
-  uint32_t rayCapacity() const { return ringCapacity(pixels); }
-  uint32_t taskCapacity() const { return ringCapacity(taskIds()); }
-  uint32_t freeCapacity() const { return ringCapacity(freeIds()); }
-  static uint32_t lookaheadCapacity() { return ringCapacity(PT_LOOKAHEAD_IDS); }
-  static uint32_t prefetchCapacity() { return ringCapacity(PT_PREFETCH_IDS); }
+  GVDP_HD uint32_t freeIds() const {
+    return pixels + workers;
+  }  // ids of freeIds; then the lookahead's
+  GVDP_HD uint32_t firstPrefetchId() const {
+    return freeIds() + PT_LOOKAHEAD_IDS;
+  }  // then the prefetch's
+  GVDP_HD uint32_t taskIds() const { return firstPrefetchId() + PT_PREFETCH_IDS; }
+  GVDP_HD uint32_t rayCapacity() const { return ringCapacity(pixels); }
+  GVDP_HD uint32_t taskCapacity() const { return ringCapacity(taskIds()); }
+  GVDP_HD uint32_t freeCapacity() const { return ringCapacity(freeIds()); }
+  GVDP_HD static uint32_t lookaheadCapacity() { return ringCapacity(PT_LOOKAHEAD_IDS); }
+  GVDP_HD static uint32_t prefetchCapacity() { return ringCapacity(PT_PREFETCH_IDS); }
   static constexpr size_t COUNTERS = size_t{PT_COUNTER_COUNT} * PT_COUNTER_STRIDE;
   size_t bytes() const {
     size_t slots = size_t{rayCapacity()} + taskCapacity() + freeCapacity() + lookaheadCapacity() +
@@ -572,18 +578,33 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
   ctx.taskKey = b.taskKey;
   ctx.waitHead = b.waitHead;
   ctx.waitNext = b.waitNext;
-  ctx.itemCount = static_cast<uint32_t>(tileCount(f) * TILE * TILE);
+  ctx.itemCount = static_cast<uint32_t>(orderedItemCount(f));
   return ctx;
 }
 
-// The counters at the start of a frame: every ray live, every task id free.
+// Counter word i at the start of a frame: every ray live, every task id free.
+GVDP_HD GVDP_INLINE uint32_t initialPtCounter(size_t i, const PtLayout& layout) {
+  if (i % PT_COUNTER_STRIDE != 0) return 0;
+  switch (static_cast<PtCounter>(i / PT_COUNTER_STRIDE)) {
+    case PT_FREE_TAIL:
+    case PT_FREE_READY:
+      return layout.freeIds();
+    case PT_LOOK_TAIL:
+    case PT_LOOK_READY:
+      return PT_LOOKAHEAD_IDS;
+    case PT_PREFETCH_TAIL:
+    case PT_PREFETCH_READY:
+      return PT_PREFETCH_IDS;
+    case PT_LIVE_WORK:
+    case PT_LIVE_RAYS:
+      return layout.pixels;
+    default:
+      return 0;
+  }
+}
+
 inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
-  for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = 0;
-  c[PT_FREE_TAIL * PT_COUNTER_STRIDE] = c[PT_FREE_READY * PT_COUNTER_STRIDE] = layout.freeIds();
-  c[PT_LOOK_TAIL * PT_COUNTER_STRIDE] = c[PT_LOOK_READY * PT_COUNTER_STRIDE] = PT_LOOKAHEAD_IDS;
-  c[PT_PREFETCH_TAIL * PT_COUNTER_STRIDE] = c[PT_PREFETCH_READY * PT_COUNTER_STRIDE] =
-      PT_PREFETCH_IDS;
-  c[PT_LIVE_WORK * PT_COUNTER_STRIDE] = c[PT_LIVE_RAYS * PT_COUNTER_STRIDE] = layout.pixels;
+  for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = initialPtCounter(i, layout);
 }
 
 // A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from

@@ -112,7 +112,7 @@ class PtCpu final : public SpFrameCpu {
     Batch fresh(uint32_t first) const {
       Batch b{ctx.itemCount - first < PT_BATCH ? ctx.itemCount - first : PT_BATCH, false, {}};
       for (uint32_t i = 0; i < b.n; ++i)
-        b.pixels[i] = tiledPixel(ctx.frame, static_cast<int>(first + i));
+        b.pixels[i] = orderedPixel(ctx.frame, ctx.tiles, static_cast<int>(first + i));
       return b;
     }
     void render(const Batch& b) const {

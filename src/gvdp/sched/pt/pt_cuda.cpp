@@ -80,10 +80,6 @@ class PtCuda final : public SpFrameCuda {
 
   // The frame's queues: empty rings, every task id free, every ray fresh and live; its prefetch.
   PtContext prepare(const FrameSetup& f) {
-    fillDevice(buffers_.payload.data(), 0, buffers_.payload.bytes(), stream());
-    std::vector<uint32_t> c(counters_.size());
-    initialPtCounters(c.data(), layout_);
-    writeDevice(counters_.data(), c.data(), counters_.bytes(), stream());
     PtContext ctx = makePtContext(f, cache_.view(), buffers_.payload.data(),
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
@@ -94,7 +90,8 @@ class PtCuda final : public SpFrameCuda {
     ctx.productions = {stage_.data(),        productionKey_.data(), words,
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
-    launchPtRingsInit(ctx, layout_, stream());
+    ctx.tiles = tileOrder_.next(f, stream());
+    launchPtFrameStart(ctx, layout_, stream());
     return ctx;
   }
 

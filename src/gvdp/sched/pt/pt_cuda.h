@@ -1,5 +1,5 @@
-// Launcher of the pt rings' initialisation (pt_kernels.cu); the worker kernel is launched
-// through CudaProducerKernels (pt_worker.cuh).
+// Launcher of a pt frame's start (pt_kernels.cu); the worker kernel is launched through
+// CudaProducerKernels (pt_worker.cuh).
 #pragma once
 
 #include <cuda_runtime_api.h>
@@ -8,7 +8,10 @@
 
 namespace gvdp::detail {
 
-// Empties the ray and task rings and fills the free task-id rings (pt_body.h: PtLayout).
-void launchPtRingsInit(const PtContext& ctx, const PtLayout& layout, cudaStream_t stream);
+// The frame's start in one launch: the ray and task rings emptied, the free task-id rings filled
+// (pt_body.h: PtLayout), every ray's payload fresh (a pixel no ray reached resolves as
+// unfinished), the counters at their start (initialPtCounter). Once a host copy of the counters
+// and six launches: 0.23 ms more than sp before the first ray (`timeline --again`, H100).
+void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, cudaStream_t stream);
 
 }  // namespace gvdp::detail

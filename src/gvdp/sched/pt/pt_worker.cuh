@@ -325,6 +325,7 @@ struct WarpWorker {
   struct Batch {
     int pixel = -1;
     bool relaunched = false;
+    int first = 0;  // a fresh batch's first item (its cost is its tile's)
   };
   __device__ Batch queued(uint32_t position, uint32_t n) {
     span.begin(TaskKind::Render);
@@ -337,10 +338,17 @@ struct WarpWorker {
   __device__ Batch fresh(uint32_t first) {
     span.begin(TaskKind::Render);
     uint32_t item = first + static_cast<uint32_t>(lane);
-    return {item < ctx.itemCount ? tiledPixel(ctx.frame, static_cast<int>(item)) : -1, false};
+    return {orderedPixel(ctx.frame, ctx.tiles, static_cast<int>(item)), false,
+            static_cast<int>(first)};
   }
   __device__ void render(const Batch& b) {
+    uint32_t start = smCycles();
     renderLanes(ctx, pool, b.pixel, b.relaunched, lane, marchShared);
+    uint32_t cycles = smCycles() - start;
+    if (b.relaunched)
+      noteRayCost(ctx.tiles, ctx.frame, b.pixel, cycles);
+    else if (lane == 0)
+      noteBlockCost(ctx.tiles, b.first, cycles);
     worked();
   }
   __device__ bool help() {

@@ -27,11 +27,11 @@ struct SpStepsCuda {
     NvtxRange range("render pass");
     fillDevice(b.counters.data(), 0, 4, stream);
     if (tiled) {
-      launchFirstRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.next.data(),
-                            b.counters.data(), stream);
+      launchFirstRenderPass(f, cache_.view(), cache_.pool(), b.order, b.payload.data(),
+                            b.next.data(), b.counters.data(), stream);
     } else {
-      launchRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.live.data(), liveCount,
-                       b.next.data(), b.counters.data(), stream);
+      launchRenderPass(f, cache_.view(), cache_.pool(), b.order, b.payload.data(), b.live.data(),
+                       liveCount, b.next.data(), b.counters.data(), stream);
     }
     GVDP_CUDA_CHECK(cudaGetLastError());
     std::swap(b.live, b.next);
@@ -66,6 +66,7 @@ void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out, cuda
 MemoryReport SpFrameCuda::memory() const {
   MemoryReport m = cache_.memory();
   m.push_back({"ray_payload_lists_image", buffers_.bytes()});
+  if (tileOrder_.bytes()) m.push_back({"tile_order", tileOrder_.bytes()});
   return m;
 }
 
@@ -88,6 +89,7 @@ class SpCuda final : public SpFrameCuda {
   void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     NvtxRange range("sp frame");
     cache_.beginFrame(f);
+    buffers_.order = tileOrder_.next(f, stream());
     runSpLoopCuda(f, cudaProducer(), cache_, buffers_, 0, true, stats, stream());
     stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }

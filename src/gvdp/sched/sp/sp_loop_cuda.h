@@ -6,14 +6,17 @@
 #include "gvdp/cache/brick_cache_cuda.h"
 #include "gvdp/render/march.h"
 #include "gvdp/sched/scheduler.h"
+#include "gvdp/sched/tile_order_cuda.h"
 
 namespace gvdp::detail {
 
 // Device buffers of the loop: ray payloads, two live-ray lists, the pass counters
-// ([0] rays stopped in a pass, [1] unfinished at resolve) and the image.
+// ([0] rays stopped in a pass, [1] unfinished at resolve) and the image; the order of the tiled
+// first pass's tiles (sp sets it each frame; row-major otherwise).
 struct SpBuffersCuda {
   DeviceBuffer<RayState> payload;
   DeviceBuffer<uint32_t> live, next, counters{2}, image;
+  TileOrder order;
 
   void resize(size_t pixels) {
     if (payload.size() == pixels) return;
@@ -50,6 +53,7 @@ class SpFrameCuda : public Scheduler {
 
   BrickCacheCuda cache_;
   SpBuffersCuda buffers_;
+  TileOrderCuda tileOrder_;  // sp's and pt's
 };
 
 // Resolves to b.image; returns the unfinished pixels.
