@@ -3,15 +3,16 @@
 // the last work taken is done; taken in row-major order, that was as likely costly as cheap, and
 // SMs fell idle one by one for 0.5 ms while a few finished costly tiles (a floor frame of
 // random-spheres, `gvdp timeline --again`, H100). A frame measures what each block of 4x4 tiles
-// cost (SM cycles of the warps that render its rays, fresh or run again after a production); the
-// next frame of the same size moves those costs with the camera's turn, takes each block's
-// largest cost among its neighbours (the camera's step moves near things by a block) and sorts the
-// blocks by it (tile_order_cuda.h). Any order gives the same image: rays are independent.
+// cost (SM cycles of the warps that render its rays afresh: counting the rays run again after a
+// production too, pt's spinning walks lost 2-4% of their FPS, H100); the next frame of the same
+// size moves those costs with the camera's turn, takes each block's largest cost among its
+// neighbours (the camera's step moves near things by a block) and sorts the blocks by it
+// (tile_order_cuda.h). Any order gives the same image: rays are independent.
 //
 // Measured on the H100 (walkthrough and forward, sp and pt, floors): sorting 8x8 tiles forest's
 // floors x1.15 (their costs move more between frames, and neighbours no longer run together);
 // blocks by their own cost x0.973 over 20 cells but forest's walkthrough x1.09; with the
-// neighbourhood's largest cost x0.933, forest x0.97 (BENCHMARKS.md, session 21).
+// neighbourhood's largest cost x0.93, forest x0.91-0.97 (BENCHMARKS.md, session 21).
 #pragma once
 
 #include <cmath>
@@ -112,13 +113,6 @@ GVDP_HD GVDP_INLINE uint32_t blockCostKey(uint32_t cycles) {
 // Adds a warp's cycles on item i's rays to its block's cost (one lane of the warp calls it).
 __device__ inline void noteBlockCost(const TileOrder& t, int i, uint32_t cycles) {
   if (t.cost) atomicAdd(&t.cost[orderedBlock(t, i)], cycles);
-}
-
-// Adds a ray's share of its warp's cycles (a 32nd) to its pixel's block (a ray run again after a
-// production: what its block cost includes that too; every lane calls it, pixel < 0: none).
-__device__ inline void noteRayCost(const TileOrder& t, const FrameSetup& f, int pixel,
-                                   uint32_t warpCycles) {
-  if (t.cost && pixel >= 0) atomicAdd(&t.cost[blockOfPixel(f, pixel)], warpCycles / 32);
 }
 
 __device__ inline uint32_t smCycles() {

@@ -345,10 +345,7 @@ struct WarpWorker {
     uint32_t start = smCycles();
     renderLanes(ctx, pool, b.pixel, b.relaunched, lane, marchShared);
     uint32_t cycles = smCycles() - start;
-    if (b.relaunched)
-      noteRayCost(ctx.tiles, ctx.frame, b.pixel, cycles);
-    else if (lane == 0)
-      noteBlockCost(ctx.tiles, b.first, cycles);
+    if (!b.relaunched && lane == 0) noteBlockCost(ctx.tiles, b.first, cycles);
     worked();
   }
   __device__ bool help() {

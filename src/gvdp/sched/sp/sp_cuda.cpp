@@ -30,8 +30,8 @@ struct SpStepsCuda {
       launchFirstRenderPass(f, cache_.view(), cache_.pool(), b.order, b.payload.data(),
                             b.next.data(), b.counters.data(), stream);
     } else {
-      launchRenderPass(f, cache_.view(), cache_.pool(), b.order, b.payload.data(), b.live.data(),
-                       liveCount, b.next.data(), b.counters.data(), stream);
+      launchRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.live.data(), liveCount,
+                       b.next.data(), b.counters.data(), stream);
     }
     GVDP_CUDA_CHECK(cudaGetLastError());
     std::swap(b.live, b.next);

@@ -15,11 +15,9 @@ namespace gvdp::detail {
 void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
                            const TileOrder& order, RayState* payload, uint32_t* next,
                            uint32_t* passCounters, cudaStream_t stream);
-// A later pass adds its rays' costs to their blocks'.
 void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                      const TileOrder& order, RayState* payload, const uint32_t* live,
-                      uint32_t liveCount, uint32_t* next, uint32_t* passCounters,
-                      cudaStream_t stream);
+                      RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
+                      uint32_t* passCounters, cudaStream_t stream);
 // Appends the pixels whose ray is not finished to `live`; passCounters[0] counts them.
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
                              uint32_t* passCounters, cudaStream_t stream);

@@ -26,17 +26,15 @@ __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
 }
 
 __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
-    renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, TileOrder order,
-                     RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
+    renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
+                     const uint32_t* live, uint32_t liveCount, uint32_t* next,
                      uint32_t* passCounters) {
   __shared__ WarpMarchShared shared[RENDER_BLOCK_WARPS];
   BlockTimer timer(f.timeline, TaskKind::Render);
-  uint32_t start = smCycles();
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
   bool stopped = renderRay(f, cache, pool, payload, i < liveCount ? static_cast<int>(pixel) : -1,
                            WarpRays{&shared[threadIdx.x / WARP_SIZE]});
-  noteRayCost(order, f, i < liveCount ? static_cast<int>(pixel) : -1, smCycles() - start);
   appendStopped(stopped, pixel, next, &passCounters[0]);
 }
 
@@ -59,11 +57,10 @@ void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const Br
 }
 
 void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                      const TileOrder& order, RayState* payload, const uint32_t* live,
-                      uint32_t liveCount, uint32_t* next, uint32_t* passCounters,
-                      cudaStream_t stream) {
+                      RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
+                      uint32_t* passCounters, cudaStream_t stream) {
   renderPassKernel<<<(liveCount + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK, 0, stream>>>(
-      f, cache, pool, order, payload, live, liveCount, next, passCounters);
+      f, cache, pool, payload, live, liveCount, next, passCounters);
 }
 
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,
