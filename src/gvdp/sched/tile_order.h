@@ -12,7 +12,8 @@
 // Measured on the H100 (walkthrough and forward, sp and pt, floors): sorting 8x8 tiles forest's
 // floors x1.15 (their costs move more between frames, and neighbours no longer run together);
 // blocks by their own cost x0.973 over 20 cells but forest's walkthrough x1.09; with the
-// neighbourhood's largest cost x0.93, forest x0.91-0.97 (BENCHMARKS.md, session 21).
+// neighbourhood's largest cost x0.94 over 50 cells, forest's walkthrough x0.92-0.99 (BENCHMARKS.md,
+// session 21).
 #pragma once
 
 #include <cmath>
