@@ -66,7 +66,7 @@ enum PtCounter : int {
   PT_PREFETCH_HEAD,  // the prefetch's free ids
   PT_PREFETCH_TAIL,
   PT_PREFETCH_READY,
-  PT_NEXT_ITEM,      // next item of the tiled screen (fresh rays)
+  PT_NEXT_ITEM,      // next item of the screen (fresh rays; tile_order.h)
   PT_LIVE_WORK,      // rays and production tasks not finished; the frame is over at 0
   PT_PRODUCTIONS,    // production tasks run
   PT_RELAUNCHED,     // rays queued again by a production
@@ -446,9 +446,9 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
 
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
-// PT_BATCH items of the tiled screen, until no ray or task of the frame is left; with none of
-// those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. Both kinds
-// of rays are run at one call site (render), so that the march is inlined once into the GPU
+// PT_BATCH items of the screen (tile_order.h), until no ray or task of the frame is left; with none
+// of those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. Both
+// kinds of rays are run at one call site (render), so that the march is inlined once into the GPU
 // kernel. The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a
 // warp, which helps an open production, its block's first):
 //   uint32_t liveWork()                                     the frame is over at 0
@@ -488,7 +488,7 @@ GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
   w.finish();
 }
 
-// The next PT_BATCH items of the tiled screen for one claimant; itemCount when none is left.
+// The next PT_BATCH items of the screen for one claimant; itemCount when none is left.
 GVDP_HD GVDP_INLINE uint32_t claimFreshItems(const PtContext& ctx) {
   if (loadRelaxed32(ctx.counter(PT_NEXT_ITEM)) >= ctx.itemCount) return ctx.itemCount;
   uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_ITEM), static_cast<uint32_t>(PT_BATCH));

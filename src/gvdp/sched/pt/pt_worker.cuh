@@ -1,9 +1,11 @@
 // The persistent kernel of the pt scheduler: every warp is a worker of pt's loop (pt_body.h) that
 // takes a production task (the warp produces the brick: 1000 samples over 32 lanes), up to 32
-// relaunched rays, or the next 8x4 pixels of the screen, until no ray or task of the frame is left.
+// relaunched rays, or the next 8x4 pixels of the screen (its costliest blocks first: tile_order.h),
+// until no ray or task of the frame is left.
 // Timeline records are per warp: a span of consecutive tasks of one kind, closed when the warp
 // switches kind or finds no work (idle warps are idle on the timeline). A template on the
-// producer (producer_kernels_of.h); the rings' initialisation is in pt_kernels.cu.
+// producer (producer_kernels_of.h); the frame's start (rings, payloads, counters) is in
+// pt_kernels.cu.
 #pragma once
 
 #include "gvdp/base/cuda_util.h"
