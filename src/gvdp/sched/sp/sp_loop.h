@@ -37,12 +37,13 @@ void produceQueued(B& backend) {
 }
 
 // Runs passes until no ray is left. With `tiled`, the first pass covers every pixel from a fresh
-// state; otherwise it resumes `liveCount` listed rays (none: only the queued bricks are
-// produced). Bricks already queued are produced before the first pass. Adds to stats.passes;
-// past SP_MAX_PASSES the frame is marked degraded.
+// state, at the frame's start (BrickCache::beginFrame has emptied the queue: no read of its
+// count, a host round trip before the first ray); otherwise it resumes `liveCount` listed rays
+// (none: only the queued bricks are produced), after producing the bricks already queued. Adds
+// to stats.passes; past SP_MAX_PASSES the frame is marked degraded.
 template <class B>
 void runSpLoop(B& backend, uint32_t liveCount, bool tiled, FrameStats& stats) {
-  produceQueued(backend);
+  if (!tiled) produceQueued(backend);
   if (liveCount == 0 && !tiled) return;
   for (int pass = 0;; ++pass) {
     liveCount = backend.renderPass(pass == 0 && tiled, liveCount);
