@@ -8,10 +8,11 @@
 // where the ray becomes opaque, and the lookahead ends there - or passed through when none is. It
 // also ends after the `cap` bricks that follow the one the ray stopped on (resident, empty or
 // not there yet: a bound on its cost, which is a march - without one, a lookahead through
-// resident bricks marched the rest of the ray a second time: pt 1.5x slower on perlin, H100), or
-// when the copy leaves the last level. A brick it meets MISSING goes to OnMiss (which may
-// decline: no task id left, pt_body.h). It stamps no timestamp: a brick only the lookahead read
-// was not sampled (over-production, cache_view.h).
+// resident bricks marched the rest of the ray a second time: pt 1.5x slower on perlin, H100), when
+// the copy leaves the last level, or when OnMiss::goesOn() says so (pt's prefetch past the frame's
+// rays). A brick it meets MISSING goes to OnMiss (which may decline: no task id left, pt_body.h).
+// It stamps no timestamp: a brick only the lookahead read was not sampled (over-production,
+// cache_view.h).
 #pragma once
 
 #include "gvdp/cache/cached_access.h"
@@ -27,7 +28,7 @@ struct LookaheadAccess {
 
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
     if (level != lastLevel || !(brick == last)) {
-      if (left == 0) return {BrickState::Stop, 0u, level, brick};
+      if (left == 0 || !cached.onMiss.goesOn()) return {BrickState::Stop, 0u, level, brick};
       --left;
       lastLevel = level;
       last = brick;

@@ -23,30 +23,38 @@ constexpr int PT_BLOCK = 256, PT_WARPS = PT_BLOCK / 32, PT_MIN_BLOCKS = 3;
 static_assert(PT_WARPS == static_cast<int>(PT_WORKER_WARPS));
 constexpr unsigned FULL_MASK = 0xffffffffu;
 
-// Lane 0's open timeline span.
+// Lane 0's open timeline span, kept in the warp's shared memory: in registers (with a copy of the
+// timeline's view) it was live across the march, which spilled at 64 registers.
 struct WarpSpan {
-  TimelineView timeline;
-  bool on, open = false;
-  TaskKind kind = TaskKind::Render;
-  uint64_t start = 0, end = 0;
+  uint64_t start, end;
+  TaskKind kind;
+  bool open;
 
-  __device__ void begin(TaskKind k) {
-    if (!on) return;
+  __device__ void begin(const TimelineView& timeline, TaskKind k) {
     if (open && k == kind) return;
-    close();
+    close(timeline);
     kind = k;
     start = clockNanoseconds();
     open = true;
   }
-  __device__ void taskDone() {
-    if (on) end = clockNanoseconds();
-  }
-  __device__ void close() {
-    if (!on || !open) return;
+  __device__ void taskDone() { end = clockNanoseconds(); }
+  __device__ void close(const TimelineView& timeline) {
+    if (!open) return;
     uint16_t sm = static_cast<uint16_t>(smId());
     timeline.push({start, end, sm, sm, kind});
     open = false;
   }
+};
+
+// What a worker warp keeps in shared memory: the march's staging (render/march_warp.cuh) and lane
+// 0's timeline span.
+struct WarpWorkerShared {
+  WarpMarchShared march;
+  WarpSpan span;
+  // Lane 0's alone: the render's start (SM cycles), the idle sleep's next length, the fresh
+  // batch's first item (-1: relaunched rays).
+  uint32_t costStart, backoff;
+  int costFirst;
 };
 
 __device__ inline uint32_t warpClaim(const Ring& r, uint32_t n, uint32_t* position, int lane) {
@@ -298,10 +306,9 @@ struct WarpWorker {
   const PtContext& ctx;
   const BrickPool& pool;
   const P& producer;
-  int warp, lane;
-  WarpSpan span;
-  WarpMarchShared* marchShared;  // the warp's
-  unsigned backoff = 32;
+  int lane;
+  WarpWorkerShared& shared;  // the warp's: nothing of the worker's own lives in registers across
+                             // the march (at 64 registers it spilled the march's state, H100)
 
   // What lane 0 finds, for every lane.
   template <class F>
@@ -317,10 +324,10 @@ struct WarpWorker {
     return warpClaim(r, n, position, lane);
   }
   __device__ void produce(uint32_t position) {
-    span.begin(TaskKind::Produce);
+    begin(TaskKind::Produce);
     uint32_t id = 0;
     if (lane == 0) id = ringTake(ctx.tasks, position);
-    produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), warp, lane);
+    produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), warp(), lane);
     worked();
   }
   // This lane's ray of a batch (-1: none).
@@ -330,7 +337,7 @@ struct WarpWorker {
     int first = 0;  // a fresh batch's first item (its cost is its tile's)
   };
   __device__ Batch queued(uint32_t position, uint32_t n) {
-    span.begin(TaskKind::Render);
+    begin(TaskKind::Render);
     return {lane < static_cast<int>(n) ? static_cast<int>(ringTake(ctx.rays, position + lane)) : -1,
             true};
   }
@@ -338,22 +345,25 @@ struct WarpWorker {
     return fromLane0([&] { return claimFreshItems(ctx); });
   }
   __device__ Batch fresh(uint32_t first) {
-    span.begin(TaskKind::Render);
+    begin(TaskKind::Render);
     uint32_t item = first + static_cast<uint32_t>(lane);
     return {orderedPixel(ctx.frame, ctx.tiles, static_cast<int>(item)), false,
             static_cast<int>(first)};
   }
   __device__ void render(const Batch& b) {
-    uint32_t start = smCycles();
-    renderLanes(ctx, pool, b.pixel, b.relaunched, lane, marchShared);
-    uint32_t cycles = smCycles() - start;
-    if (!b.relaunched && lane == 0) noteBlockCost(ctx.tiles, b.first, cycles);
+    if (lane == 0) {
+      shared.costFirst = b.relaunched ? -1 : b.first;
+      shared.costStart = smCycles();
+    }
+    renderLanes(ctx, pool, b.pixel, b.relaunched, lane, &shared.march);
+    if (lane == 0 && shared.costFirst >= 0)
+      noteBlockCost(ctx.tiles, shared.costFirst, smCycles() - shared.costStart);
     worked();
   }
   __device__ bool help() {
     uint32_t open = openProduction(ctx.productions, lane);
     if (open == NO_PRODUCTION) return false;
-    span.begin(TaskKind::Produce);
+    begin(TaskKind::Produce);
     produceChunks(producer, ctx.productions, open, lane);
     worked();
     return true;
@@ -364,38 +374,48 @@ struct WarpWorker {
   // Forced inline (as ptWorkerLoop): left to ptxas, a larger march than today's once made it a
   // call of 164 registers from the 80-register kernel, a build error (BENCHMARKS.md, session 13).
   __device__ __forceinline__ void prefetch(uint32_t first) {
-    span.begin(TaskKind::Prefetch);
+    begin(TaskKind::Prefetch);
     uint32_t item = first + static_cast<uint32_t>(lane);
     if (item < ctx.prefetchItems) prefetchRay(ctx, pool, item);
     __syncwarp();
     worked();
   }
   __device__ void idle() {
-    span.close();
-    __nanosleep(backoff);
-    backoff = backoff < 1024 ? backoff * 2 : backoff;
+    if (lane == 0) {  // lane 0 alone keeps the span and the backoff; the others wait for it
+      if (timed()) shared.span.close(ctx.frame.timeline);
+      __nanosleep(shared.backoff);
+      shared.backoff = shared.backoff < 1024 ? shared.backoff * 2 : shared.backoff;
+    }
+    __syncwarp();
   }
-  __device__ void finish() { span.close(); }
+  __device__ void finish() {
+    if (timed()) shared.span.close(ctx.frame.timeline);
+  }
 
   __device__ void worked() {
-    span.taskDone();
-    backoff = 32;
+    if (timed()) shared.span.taskDone();
+    if (lane == 0) shared.backoff = 32;
   }
+  __device__ void begin(TaskKind k) {
+    if (timed()) shared.span.begin(ctx.frame.timeline, k);
+  }
+  __device__ bool timed() const { return lane == 0 && ctx.frame.timeline.enabled(); }
+  __device__ int warp() const { return static_cast<int>(threadIdx.x >> 5); }
 };
 
 template <class P>
 __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
     ptWorkerKernel(const __grid_constant__ PtContext ctx, const __grid_constant__ BrickPool pool,
                    const __grid_constant__ P producer) {
-  __shared__ WarpMarchShared marchShared[PT_WARPS];
-  int lane = static_cast<int>(threadIdx.x & 31), warp = static_cast<int>(threadIdx.x >> 5);
-  WarpWorker<P> w{ctx,
-                  pool,
-                  producer,
-                  warp,
-                  lane,
-                  WarpSpan{ctx.frame.timeline, lane == 0 && ctx.frame.timeline.enabled()},
-                  &marchShared[warp]};
+  __shared__ WarpWorkerShared shared[PT_WARPS];
+  int lane = static_cast<int>(threadIdx.x & 31);
+  WarpWorkerShared& mine = shared[threadIdx.x >> 5];
+  if (lane == 0) {
+    mine.span.open = false;
+    mine.backoff = 32;
+  }
+  __syncwarp();
+  WarpWorker<P> w{ctx, pool, producer, lane, mine};
   ptWorkerLoop(ctx, w);
 }
 
