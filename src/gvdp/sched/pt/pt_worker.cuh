@@ -51,9 +51,9 @@ struct WarpSpan {
 struct WarpWorkerShared {
   WarpMarchShared march;
   WarpSpan span;
-  // Lane 0's alone: the render's start (SM cycles), the idle sleep's next length, the fresh
-  // batch's first item (-1: relaunched rays).
-  uint32_t costStart, backoff;
+  // Lane 0's alone: the render's start (SM cycles) and the fresh batch's first item (-1:
+  // relaunched rays).
+  uint32_t costStart;
   int costFirst;
 };
 
@@ -307,8 +307,9 @@ struct WarpWorker {
   const BrickPool& pool;
   const P& producer;
   int lane;
-  WarpWorkerShared& shared;  // the warp's: nothing of the worker's own lives in registers across
+  WarpWorkerShared& shared;  // the warp's: little of the worker's own lives in registers across
                              // the march (at 64 registers it spilled the march's state, H100)
+  unsigned backoff = 32;
 
   // What lane 0 finds, for every lane.
   template <class F>
@@ -381,12 +382,9 @@ struct WarpWorker {
     worked();
   }
   __device__ void idle() {
-    if (lane == 0) {  // lane 0 alone keeps the span and the backoff; the others wait for it
-      if (timed()) shared.span.close(ctx.frame.timeline);
-      __nanosleep(shared.backoff);
-      shared.backoff = shared.backoff < 1024 ? shared.backoff * 2 : shared.backoff;
-    }
-    __syncwarp();
+    if (timed()) shared.span.close(ctx.frame.timeline);
+    __nanosleep(backoff);
+    backoff = backoff < 1024 ? backoff * 2 : backoff;
   }
   __device__ void finish() {
     if (timed()) shared.span.close(ctx.frame.timeline);
@@ -394,7 +392,7 @@ struct WarpWorker {
 
   __device__ void worked() {
     if (timed()) shared.span.taskDone();
-    if (lane == 0) shared.backoff = 32;
+    backoff = 32;
   }
   __device__ void begin(TaskKind k) {
     if (timed()) shared.span.begin(ctx.frame.timeline, k);
@@ -410,10 +408,7 @@ __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
   __shared__ WarpWorkerShared shared[PT_WARPS];
   int lane = static_cast<int>(threadIdx.x & 31);
   WarpWorkerShared& mine = shared[threadIdx.x >> 5];
-  if (lane == 0) {
-    mine.span.open = false;
-    mine.backoff = 32;
-  }
+  if (lane == 0) mine.span.open = false;
   __syncwarp();
   WarpWorker<P> w{ctx, pool, producer, lane, mine};
   ptWorkerLoop(ctx, w);
