@@ -34,7 +34,6 @@
 // separate ring of PT_LOOKAHEAD_IDS, only when one is ready. `tasks` holds at most all ids.
 #pragma once
 
-#include <algorithm>
 #include <numeric>
 
 #include "gvdp/cache/lookahead.h"
@@ -177,7 +176,6 @@ struct PtContext {
   uint32_t prefetchStride;                  // a prefetch ray per prefetchStride^2 pixels
   uint32_t prefetchColumns, prefetchItems;  // prefetch rays per row, in all (0: no prefetch)
   uint32_t prefetchRowStep;   // prefetch rows are taken in the order k * step mod rows
-  uint32_t prefetchKeep;      // its marches outlive the frame's rays from this many claims on
   BrickKey* taskKey;          // per task id
   uint32_t* waitHead;         // per task id: LIST_END, a pixel, or LIST_CLOSED
   uint32_t* waitNext;         // per pixel
@@ -296,18 +294,24 @@ struct StartAhead {
   uint32_t firstId;
   PtCounter counted;
   uint32_t left;
-  uint32_t keep;  // 0, or the march ends with the frame's rays unless `counted` reached it
+  bool endsWithRays;  // a prefetch's: see goesOn
 
   static GVDP_HD StartAhead lookahead(const PtContext& c, uint32_t bricks) {
-    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks, 0};
+    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks, false};
   }
   static GVDP_HD StartAhead prefetch(const PtContext& c) {
-    return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS, c.prefetchKeep};
+    return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS, true};
   }
-  // Whether the march may enter another brick (cache/lookahead.h).
+  // Whether the march may enter another brick (cache/lookahead.h). A prefetch march enters none
+  // after the frame's last ray has finished unless the frame's prefetch has claimed a brick: the
+  // frame ends with its last march, and one of 64 bricks outlived the rays by up to 0.5 ms,
+  // whatever it found (forest's walkthrough floor 5.31 ms, 4.79 without the prefetch in the floor's
+  // frames). H100, 25 pt cells against marches that always go on: floors x0.958, FPS x0.999; ending
+  // them unless a brick per 1024 prefetch rays was claimed cut aligned-spheres' walkthrough, which
+  // lives on its prefetch, from 452 to 389-441 FPS (BENCHMARKS.md, session 22).
   GVDP_HD bool goesOn() const {
-    return keep == 0 || loadRelaxed32(ctx->counter(PT_LIVE_RAYS)) != 0 ||
-           loadRelaxed32(ctx->counter(counted)) >= keep;
+    return !endsWithRays || loadRelaxed32(ctx->counter(PT_LIVE_RAYS)) != 0 ||
+           loadRelaxed32(ctx->counter(counted)) != 0;
   }
   GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) {
     if (left == 0 || loadRelaxed32(&cache.counters[COUNTER_FREE_NEXT]) >= cache.freeCount() / 2)
@@ -615,14 +619,6 @@ inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
   for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = initialPtCounter(i, layout);
 }
 
-// A prefetch march enters bricks after the frame's last ray has finished (StartAhead::goesOn) only
-// while the frame's prefetch has claimed a brick per PT_PREFETCH_KEEP of its rays: the frame ends
-// when its last march does, and one of 64 bricks outlived the rays by up to 0.5 ms whatever it
-// found (forest's walkthrough floor 5.31 ms, 4.79 without the prefetch in the floor's frames;
-// with this rule 4.84, 25 pt cells' floors x0.950, FPS x1.004; H100, BENCHMARKS.md, session 22).
-// A frame whose prefetch keeps finding bricks (aligned-spheres', which live on it) lets it run on.
-constexpr uint32_t PT_PREFETCH_KEEP = 1024;
-
 // A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from
 // the same view): rays of
 // the next frame as the motion from `previous` predicts it, one per stride x stride pixels, the
@@ -644,7 +640,6 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
   ctx.prefetchColumns = columns;
   ctx.prefetchItems = columns * rows;
   ctx.prefetchRowStep = step % rows;
-  ctx.prefetchKeep = std::max(1u, ctx.prefetchItems / PT_PREFETCH_KEEP);
 }
 
 }  // namespace gvdp::detail
