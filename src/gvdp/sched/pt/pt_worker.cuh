@@ -18,7 +18,8 @@
 namespace gvdp::detail {
 
 // 3 blocks of 8 warps per SM (80 registers): measured on an H100 against 2 (125 registers) and
-// 4 (64, spilling), perlin 1500x1000: 24 ms per frame against 39 and 25.
+// 4 (64, spilling), perlin 1500x1000: 24 ms per frame against 39 and 25; 7 blocks of 4 warps (72
+// registers): 25 pt cells' floors x0.974, FPS x0.988 (BENCHMARKS.md, session 22).
 constexpr int PT_BLOCK = 256, PT_WARPS = PT_BLOCK / 32, PT_MIN_BLOCKS = 3;
 static_assert(PT_WARPS == static_cast<int>(PT_WORKER_WARPS));
 constexpr unsigned FULL_MASK = 0xffffffffu;
