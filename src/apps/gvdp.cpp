@@ -90,10 +90,10 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_LOOKAHEAD) + "; 0: off)");
   cmd->add_option("--tail-lookahead", f.tailLookahead,
-                  "pt: at least this lookahead in a frame's tail (at most one ray in 32 live), "
+                  "pt: at least this lookahead in a frame's tail (at most one ray in 256 live), "
                   "0.." +
-                      std::to_string(MAX_LOOKAHEAD) +
-                      " (default 0: --lookahead's; 8 measured faster, with more over-production)");
+                      std::to_string(MAX_LOOKAHEAD) + " (default " +
+                      std::to_string(DEFAULT_TAIL_LOOKAHEAD) + "; 0: --lookahead's)");
   cmd->add_option("--prefetch", f.prefetch,
                   "pt: in each frame's tail, produce the bricks of the next frame the camera's "
                   "motion predicts, marching a ray per N x N pixels, N 0.." +
@@ -240,7 +240,8 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.poolBricks = poolBricksFrom(f.poolBricks, f.poolMb);
   o.scheduler.pendingLaunches = pendingLaunchesFrom(f.pendingLaunches);
   o.scheduler.lookahead = lookaheadFrom(f.lookahead);
-  o.scheduler.tailLookahead = lookaheadFrom(f.tailLookahead, "--tail-lookahead", 0);
+  o.scheduler.tailLookahead =
+      lookaheadFrom(f.tailLookahead, "--tail-lookahead", DEFAULT_TAIL_LOOKAHEAD);
   o.scheduler.prefetch = prefetchFrom(f.prefetch);
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
@@ -513,7 +514,7 @@ BenchOptions benchOptions(const BenchFlags& f) {
                    " (expected 0..100000)");
   o.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   o.lookahead = lookaheadFrom(f.lookahead);
-  o.tailLookahead = lookaheadFrom(f.tailLookahead, "--tail-lookahead", 0);
+  o.tailLookahead = lookaheadFrom(f.tailLookahead, "--tail-lookahead", DEFAULT_TAIL_LOOKAHEAD);
   o.prefetch = prefetchFrom(f.prefetch);
   o.budgetMs = budgetFrom(f.budgetMs);
   o.scale = f.scale;
@@ -709,7 +710,9 @@ int run(int argc, char** argv) {
       "--lookahead", bench.lookahead,
       "pt's lookahead in bricks (default " + std::to_string(DEFAULT_LOOKAHEAD) + ")");
   benchCmd->add_option("--tail-lookahead", bench.tailLookahead,
-                       "pt's lookahead in a frame's tail (default 0; see render --tail-lookahead)");
+                       "pt's lookahead in a frame's tail (default " +
+                           std::to_string(DEFAULT_TAIL_LOOKAHEAD) +
+                           "; see render --tail-lookahead)");
   benchCmd->add_option("--prefetch", bench.prefetch,
                        "pt's idle-time prefetch, a ray per N x N pixels (default " +
                            std::to_string(DEFAULT_PREFETCH) + "; 0: off; see render --prefetch)");

@@ -23,10 +23,10 @@ struct BenchOptions {
   int width = 1500, height = 1000;
   int frames = 32, warmup = 6, floorFrames = 8;
   uint32_t poolBricks = 0;
-  uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt's
-  uint32_t tailLookahead = 0;              // pt's, in a frame's tail
-  uint32_t prefetch = DEFAULT_PREFETCH;    // pt's
-  double budgetMs = NO_BUDGET;             // every cell's frame-time budget
+  uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt's
+  uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt's, in a frame's tail
+  uint32_t prefetch = DEFAULT_PREFETCH;             // pt's
+  double budgetMs = NO_BUDGET;                      // every cell's frame-time budget
   bool scale = false;  // frame time against resolution for dp on the first scene
 };
 

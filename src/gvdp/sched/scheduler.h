@@ -59,6 +59,7 @@ struct FrameStats {
 // produced: 2 keeps it under the 10% the issue allows. Before, 4 had made perlin 4-14% slower.
 constexpr uint32_t DEFAULT_LOOKAHEAD = 2;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
+constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 8;  // pt: see ptTailLookahead
 
 // pt's idle-time prefetch (pt_body.h): a ray of the predicted next frame per N x N pixels, 0: off.
 // On by default: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 made pt's 25 cells faster on
@@ -76,18 +77,19 @@ struct SchedulerOptions {
   uint32_t poolBricks = 0;       // 0: the backend's default
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
-  uint32_t lookahead = DEFAULT_LOOKAHEAD;  // pt: missing bricks a stopped ray claims ahead
-  uint32_t tailLookahead = 0;              // pt: at least this many in a frame's tail (below)
-  uint32_t prefetch = DEFAULT_PREFETCH;    // pt: a prefetch ray per N x N pixels (0: none)
+  uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt: missing bricks a stopped ray claims ahead
+  uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt: at least this many in a frame's tail
+  uint32_t prefetch = DEFAULT_PREFETCH;             // pt: a prefetch ray per N x N pixels (0: none)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
-// pt's lookahead in a frame's tail (at most one ray in 32 live: pt_body.h, lookaheadBricks): at
-// least `tailLookahead` bricks, unless the lookahead is off. There the last chains of productions
-// are what is left of the frame. On an H100 (BENCHMARKS.md, session 14), 8 gave the 25 cells FPS
-// x1.042 (forest walkthrough +12%, random-spheres' frame-12 idle 10.4% -> 4.0%, 1% lows >= 75% of
-// the average in 12 cells instead of 9) but over-production 16.6% in fbm's spinning walk, over
-// the 10% issue 14 allows: off (0) by default, `--tail-lookahead 8` to have it.
+// pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE = 256 live: pt_body.h,
+// lookaheadBricks): at least `tailLookahead` bricks, unless the lookahead is off. There the last
+// chains of productions are what is left of the frame. On an H100 (25 pt cells, BENCHMARKS.md,
+// session 23), 8 bricks once one ray in 256 is live gave FPS x1.046, random-spheres' walkthrough
+// frame-12 idle 12% -> 6-8%, over-production at most 9.4% (fbm spinning, 8.1% without); once one
+// ray in 32 is live (session 14's tail), fbm spinning over-produced 11.5-16.6%, over the 10%
+// issue 14 allows; 4 to 6 bricks at one ray in 32 to 256 gave less (FPS x1.025-1.043).
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
 }

@@ -48,7 +48,7 @@ constexpr int PT_COUNTER_STRIDE = 32;            // counters sit 128 bytes apart
 constexpr uint32_t PT_LOOKAHEAD_IDS = 1u << 15;  // task ids for the lookahead's claims
 constexpr uint32_t PT_PREFETCH_IDS = 1u << 14;   // task ids for the prefetch's claims
 // A frame's tail: at most one ray in PT_TAIL_SHARE live (PtContext::tailLookahead).
-constexpr uint32_t PT_TAIL_SHARE = 32;
+constexpr uint32_t PT_TAIL_SHARE = 256;
 
 enum PtCounter : int {
   PT_RAY_HEAD,
