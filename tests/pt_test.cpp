@@ -309,4 +309,34 @@ TEST(PtPrefetch, MarchesOutliveTheFramesRaysOnlyOnceTheyClaim) {
   EXPECT_TRUE(prefetch.goesOn()) << "no ray live, but claiming";
 }
 
+// A frame takes its rings over from the last one only if that left them as a frame starts
+// them: ray and task rings empty, every task id back. Positions may stand anywhere, wrapped too.
+TEST(PtRings, AreKeptOnlyWhenQuiet) {
+  const PtLayout layout{160 * 100, 8};
+  std::vector<uint32_t> c(PtLayout::COUNTERS, 0u);
+  initialPtCounters(c.data(), layout);
+  EXPECT_TRUE(ptRingsQuiet(c.data(), layout)) << "as a frame starts";
+  auto word = [&](PtCounter k) -> uint32_t& {
+    return c[static_cast<size_t>(k) * PT_COUNTER_STRIDE];
+  };
+  for (PtCounter k : {PT_RAY_HEAD, PT_RAY_TAIL, PT_FREE_HEAD, PT_FREE_TAIL})
+    word(k) += 0xfffffff0u;  // a few laps on, past 2^32
+  EXPECT_TRUE(ptRingsQuiet(c.data(), layout)) << "positions moved on together";
+  word(PT_TASK_TAIL) += 1;
+  EXPECT_FALSE(ptRingsQuiet(c.data(), layout)) << "a task reserved and never taken";
+  word(PT_TASK_HEAD) += 1;
+  EXPECT_TRUE(ptRingsQuiet(c.data(), layout));
+  word(PT_LOOK_READY) -= 1;
+  EXPECT_FALSE(ptRingsQuiet(c.data(), layout)) << "a lookahead id not given back";
+  word(PT_LOOK_READY) += 1;
+  word(PT_FREE_READY) += 99;  // freeIds is taken without a claim: its `ready` counts pushes only
+  EXPECT_TRUE(ptRingsQuiet(c.data(), layout));
+  EXPECT_FALSE(ptRingsQuiet(c.data(), PtLayout{160 * 100, 16})) << "another layout's free ids";
+  // The frame's own counters start afresh either way; the rings' are left as they stand.
+  word(PT_LIVE_RAYS) = 0;
+  initialPtCounters(c.data(), layout, true);
+  EXPECT_EQ(word(PT_LIVE_RAYS), layout.pixels);
+  EXPECT_EQ(word(PT_RAY_HEAD), 0xfffffff0u);
+}
+
 }  // namespace gvdp::detail

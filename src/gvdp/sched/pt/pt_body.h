@@ -79,6 +79,8 @@ enum PtCounter : int {
   PT_COUNTER_COUNT
 };
 
+static_assert(PT_RAY_HEAD == 0 && PT_NEXT_ITEM == 15, "five rings of three counters come first");
+
 // A bounded multi-producer multi-consumer ring (D. Vyukov's): a slot is (sequence, value) in one
 // 64-bit word; the producer of position p waits for sequence p and leaves p + 1, the consumer
 // waits for p + 1 and leaves p + capacity, so each slot serves its laps strictly in order.
@@ -431,7 +433,8 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
   bool live = pixel >= 0, finished = false, again = relaunched;
   const uint32_t p = live ? static_cast<uint32_t>(pixel) : 0u;
   Ray ray = f.primaryRay(static_cast<int>(p) % f.width, static_cast<int>(p) / f.width);
-  RayState s = live ? loadRayState(&ctx.payload[p]) : initialRayState();
+  // A fresh ray starts afresh: its payload is the last frame's (no frame start writes them).
+  RayState s = live && relaunched ? loadRayState(&ctx.payload[p]) : initialRayState();
   CachedAccess<Pool, NoteMiss> access{ctx.cache, pool, f.lod, NoteMiss{&ctx}};
   while (lanes.any(live)) {
     MarchResult r = lanes.march(ray, f.lod, s, access, live);
@@ -615,8 +618,34 @@ GVDP_HD GVDP_INLINE uint32_t initialPtCounter(size_t i, const PtLayout& layout) 
   }
 }
 
-inline void initialPtCounters(uint32_t* c, const PtLayout& layout) {
-  for (size_t i = 0; i < PtLayout::COUNTERS; ++i) c[i] = initialPtCounter(i, layout);
+// The counter words from PT_FIRST_FRAME_COUNTER on start every frame afresh; those before it are
+// the rings' (head, tail, ready), which a frame may take over from the last one (ptRingsQuiet).
+constexpr size_t PT_FIRST_FRAME_COUNTER = size_t{PT_NEXT_ITEM} * PT_COUNTER_STRIDE;
+
+// With `keepRings`, the frame's counters only (the rings as the last frame left them).
+inline void initialPtCounters(uint32_t* c, const PtLayout& layout, bool keepRings = false) {
+  for (size_t i = keepRings ? PT_FIRST_FRAME_COUNTER : 0; i < PtLayout::COUNTERS; ++i)
+    c[i] = initialPtCounter(i, layout);
+}
+
+// Whether a frame's rings, by their counters `c` at its end, are as a frame of `layout` starts
+// them, up to where their positions stand: the ray and task rings empty, every task id back in
+// its ring (the ids in any order). A Vyukov ring (Ring) left so serves its next laps as one whose
+// slots were written afresh - its positions go on from where they stand, wrapping at 2^32, which
+// its capacity divides - so the next frame of the same layout keeps it: writing every slot
+// (6.3 M, 50 MB at 1500x1000) and every ray's payload (36 MB) took 40 us of each frame's start,
+// 12% of aligned-spheres' 0.33 ms floor frame (`gvdp timeline --again`, H100). A frame that ended
+// otherwise (an error, a bug: some id never given back) has its rings filled afresh.
+inline bool ptRingsQuiet(const uint32_t* c, const PtLayout& layout) {
+  const uint32_t filled[] = {0, 0, layout.freeIds(), PT_LOOKAHEAD_IDS, PT_PREFETCH_IDS};
+  for (uint32_t r = 0; r < 5; ++r) {
+    const uint32_t* w = c + size_t{PT_RAY_HEAD + 3u * r} * PT_COUNTER_STRIDE;
+    uint32_t head = w[0], tail = w[PT_COUNTER_STRIDE], ready = w[2 * PT_COUNTER_STRIDE];
+    // freeIds is taken at its head without a claim (claimStop): its `ready` only counts pushes.
+    bool claimed = r != 2;
+    if (tail - head != filled[r] || (claimed && ready != filled[r])) return false;
+  }
+  return true;
 }
 
 // A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -46,26 +47,34 @@ class PtCpu final : public SpFrameCpu {
     stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
     stats.lookaheadClaims = *ctx.counter(PT_LOOKAHEAD);
     stats.prefetchClaims = *ctx.counter(PT_PREFETCHES);
+    stats.unfinishedPixels = std::max<int64_t>(stats.unfinishedPixels, *ctx.counter(PT_LIVE_RAYS));
     previous_ = f;
   }
 
   PtContext prepare(const FrameSetup& f) {
+    const PtLayout last = layout_;
     layout_ = {static_cast<uint32_t>(f.pixelCount()),
                static_cast<uint32_t>(ThreadPool::global().size())};
+    // The rings as the last frame left them if it left them quiet (ptRingsQuiet), as on the GPU.
+    const bool keepRings = last.pixels == layout_.pixels && last.workers == layout_.workers &&
+                           counters_.size() == PtLayout::COUNTERS &&
+                           ptRingsQuiet(counters_.data(), layout_);
     auto initRing = [](std::vector<uint64_t>& slots, uint32_t capacity, uint32_t filled) {
       slots.resize(capacity);
       for (uint32_t i = 0; i < capacity; ++i) slots[i] = ringInitialSlot(i, filled);
     };
-    initRing(raySlots_, layout_.rayCapacity(), 0);
-    initRing(taskSlots_, layout_.taskCapacity(), 0);
-    initRing(freeSlots_, layout_.freeCapacity(), layout_.freeIds());
-    initRing(lookaheadSlots_, PtLayout::lookaheadCapacity(), PT_LOOKAHEAD_IDS);
-    initRing(prefetchSlots_, PtLayout::prefetchCapacity(), PT_PREFETCH_IDS);
+    if (!keepRings) {
+      initRing(raySlots_, layout_.rayCapacity(), 0);
+      initRing(taskSlots_, layout_.taskCapacity(), 0);
+      initRing(freeSlots_, layout_.freeCapacity(), layout_.freeIds());
+      initRing(lookaheadSlots_, PtLayout::lookaheadCapacity(), PT_LOOKAHEAD_IDS);
+      initRing(prefetchSlots_, PtLayout::prefetchCapacity(), PT_PREFETCH_IDS);
+    }
     taskKey_.resize(layout_.taskIds());
     waitHead_.assign(layout_.taskIds(), LIST_CLOSED);
     waitNext_.assign(layout_.pixels, LIST_END);
     counters_.resize(PtLayout::COUNTERS);
-    initialPtCounters(counters_.data(), layout_);
+    initialPtCounters(counters_.data(), layout_, keepRings);
     PtContext ctx = makePtContext(f, cache_.view(), payload_.data(),
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -63,12 +64,16 @@ class PtCuda final : public SpFrameCuda {
     stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
     stats.lookaheadClaims = c[PT_LOOKAHEAD * PT_COUNTER_STRIDE];
     stats.prefetchClaims = c[PT_PREFETCHES * PT_COUNTER_STRIDE];
+    stats.unfinishedPixels =
+        std::max<int64_t>(stats.unfinishedPixels, c[PT_LIVE_RAYS * PT_COUNTER_STRIDE]);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
+    ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
   }
 
   void resize(const FrameSetup& f) {
     uint32_t n = static_cast<uint32_t>(f.pixelCount());
     if (waitNext_.size() == n) return;
+    ringsQuiet_ = false;  // new rings
     layout_ = {n, workers_};
     raySlots_ = DeviceBuffer<uint64_t>(layout_.rayCapacity());
     taskSlots_ = DeviceBuffer<uint64_t>(layout_.taskCapacity());
@@ -91,7 +96,8 @@ class PtCuda final : public SpFrameCuda {
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
     ctx.tiles = tileOrder_.next(f, stream());
-    launchPtFrameStart(ctx, layout_, stream());
+    launchPtFrameStart(ctx, layout_, ringsQuiet_, stream());
+    ringsQuiet_ = false;  // until this frame's end says so
     return ctx;
   }
 
@@ -106,6 +112,7 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<BrickKey> productionKey_;
   DeviceBuffer<uint32_t> productionCounters_;  // next, done, nonEmpty per worker; open bits
   PtLayout layout_{};
+  bool ringsQuiet_ = false;  // the last frame left the rings as a frame starts them
 };
 
 }  // namespace

@@ -8,11 +8,12 @@
 
 namespace gvdp::detail {
 
-// The frame's start in one launch: the ray and task rings emptied, the free task-id rings filled
-// (pt_body.h: PtLayout), every ray's payload fresh (a pixel no ray reached resolves as
-// unfinished), the counters at their start (initialPtCounter). It replaced a host copy of the
-// counters, a memset and five ring launches, at the same frame times (floors x0.998, H100): pt's
-// workers start 0.23 ms after sp's first pass (`timeline --again`) for another reason.
-void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, cudaStream_t stream);
+// The frame's start in one launch: the counters at their start (initialPtCounter); unless
+// `keepRings` (the last frame left them quiet: ptRingsQuiet), the ray and task rings emptied and
+// the free task-id rings filled (pt_body.h: PtLayout). No payload is written: a fresh ray starts
+// from initialRayState (ptRunRay), and a pixel no ray reached keeps PT_LIVE_RAYS above 0, which
+// the frame reports as unfinished pixels.
+void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, bool keepRings,
+                        cudaStream_t stream);
 
 }  // namespace gvdp::detail
