@@ -79,7 +79,8 @@ enum PtCounter : int {
   PT_COUNTER_COUNT
 };
 
-static_assert(PT_RAY_HEAD == 0 && PT_NEXT_ITEM == 15, "five rings of three counters come first");
+static_assert(PT_RAY_HEAD == 0 && PT_FREE_HEAD == 6 && PT_LOOK_HEAD == 9 && PT_NEXT_ITEM == 15,
+              "the five rings' three counters come first, in ptRingFilled's order");
 
 // A bounded multi-producer multi-consumer ring (D. Vyukov's): a slot is (sequence, value) in one
 // 64-bit word; the producer of position p waits for sequence p and leaves p + 1, the consumer
@@ -597,25 +598,24 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
   return ctx;
 }
 
+// The five rings, in the order of their counters: rays, tasks, freeIds, lookaheadIds, prefetchIds.
+constexpr uint32_t PT_RINGS = 5;
+constexpr uint32_t PT_FREE_RING = 2;
+
+// The items ring r holds at a frame's start: the free task-id rings all their ids, the others none.
+GVDP_HD GVDP_INLINE uint32_t ptRingFilled(uint32_t r, const PtLayout& layout) {
+  return r == PT_FREE_RING ? layout.freeIds()
+         : r == 3          ? PT_LOOKAHEAD_IDS
+         : r == 4          ? PT_PREFETCH_IDS
+                           : 0u;
+}
+
 // Counter word i at the start of a frame: every ray live, every task id free.
 GVDP_HD GVDP_INLINE uint32_t initialPtCounter(size_t i, const PtLayout& layout) {
   if (i % PT_COUNTER_STRIDE != 0) return 0;
-  switch (static_cast<PtCounter>(i / PT_COUNTER_STRIDE)) {
-    case PT_FREE_TAIL:
-    case PT_FREE_READY:
-      return layout.freeIds();
-    case PT_LOOK_TAIL:
-    case PT_LOOK_READY:
-      return PT_LOOKAHEAD_IDS;
-    case PT_PREFETCH_TAIL:
-    case PT_PREFETCH_READY:
-      return PT_PREFETCH_IDS;
-    case PT_LIVE_WORK:
-    case PT_LIVE_RAYS:
-      return layout.pixels;
-    default:
-      return 0;
-  }
+  const uint32_t k = static_cast<uint32_t>(i / PT_COUNTER_STRIDE);
+  if (k < 3 * PT_RINGS) return k % 3 == 0 ? 0u : ptRingFilled(k / 3, layout);  // head; tail, ready
+  return k == PT_LIVE_WORK || k == PT_LIVE_RAYS ? layout.pixels : 0u;
 }
 
 // The counter words from PT_FIRST_FRAME_COUNTER on start every frame afresh; those before it are
@@ -637,13 +637,12 @@ inline void initialPtCounters(uint32_t* c, const PtLayout& layout, bool keepRing
 // 12% of aligned-spheres' 0.33 ms floor frame (`gvdp timeline --again`, H100). A frame that ended
 // otherwise (an error, a bug: some id never given back) has its rings filled afresh.
 inline bool ptRingsQuiet(const uint32_t* c, const PtLayout& layout) {
-  const uint32_t filled[] = {0, 0, layout.freeIds(), PT_LOOKAHEAD_IDS, PT_PREFETCH_IDS};
-  for (uint32_t r = 0; r < 5; ++r) {
-    const uint32_t* w = c + size_t{PT_RAY_HEAD + 3u * r} * PT_COUNTER_STRIDE;
+  for (uint32_t r = 0; r < PT_RINGS; ++r) {
+    const uint32_t* w = c + size_t{3u * r} * PT_COUNTER_STRIDE;
     uint32_t head = w[0], tail = w[PT_COUNTER_STRIDE], ready = w[2 * PT_COUNTER_STRIDE];
+    uint32_t filled = ptRingFilled(r, layout);
     // freeIds is taken at its head without a claim (claimStop): its `ready` only counts pushes.
-    bool claimed = r != 2;
-    if (tail - head != filled[r] || (claimed && ready != filled[r])) return false;
+    if (tail - head != filled || (r != PT_FREE_RING && ready != filled)) return false;
   }
   return true;
 }

@@ -64,11 +64,11 @@ class PtCpu final : public SpFrameCpu {
       for (uint32_t i = 0; i < capacity; ++i) slots[i] = ringInitialSlot(i, filled);
     };
     if (!keepRings) {
-      initRing(raySlots_, layout_.rayCapacity(), 0);
-      initRing(taskSlots_, layout_.taskCapacity(), 0);
-      initRing(freeSlots_, layout_.freeCapacity(), layout_.freeIds());
-      initRing(lookaheadSlots_, PtLayout::lookaheadCapacity(), PT_LOOKAHEAD_IDS);
-      initRing(prefetchSlots_, PtLayout::prefetchCapacity(), PT_PREFETCH_IDS);
+      initRing(raySlots_, layout_.rayCapacity(), ptRingFilled(0, layout_));
+      initRing(taskSlots_, layout_.taskCapacity(), ptRingFilled(1, layout_));
+      initRing(freeSlots_, layout_.freeCapacity(), ptRingFilled(PT_FREE_RING, layout_));
+      initRing(lookaheadSlots_, PtLayout::lookaheadCapacity(), ptRingFilled(3, layout_));
+      initRing(prefetchSlots_, PtLayout::prefetchCapacity(), ptRingFilled(4, layout_));
     }
     taskKey_.resize(layout_.taskIds());
     waitHead_.assign(layout_.taskIds(), LIST_CLOSED);

@@ -12,11 +12,10 @@ struct Filled {  // a ring whose first `filled` positions hold the ids 0, 1, ...
 
 void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, bool keepRings,
                         cudaStream_t stream) {
-  const Filled rings[] = {{ctx.rays, 0},
-                          {ctx.tasks, 0},
-                          {ctx.freeIds, layout.freeIds()},
-                          {ctx.lookaheadIds, PT_LOOKAHEAD_IDS},
-                          {ctx.prefetchIds, PT_PREFETCH_IDS}};
+  const Ring order[PT_RINGS] = {ctx.rays, ctx.tasks, ctx.freeIds, ctx.lookaheadIds,
+                                ctx.prefetchIds};
+  Filled rings[PT_RINGS];
+  for (uint32_t r = 0; r < PT_RINGS; ++r) rings[r] = {order[r], ptRingFilled(r, layout)};
   uint32_t slots = 0;
   if (!keepRings)
     for (const Filled& r : rings) slots += r.ring.mask + 1;
