@@ -6,18 +6,18 @@
 //   fillBytes(Buffer<T>&, int byte)             every byte set (memset)
 //   zero(uint32_t* p, size_t n), read(const uint32_t* from, uint32_t* to, size_t n)
 //   resetSlabs(view, slabs, timeline)           the slabs the clipmap windows left (cache_ops.h)
-//   sortLru(timestamps, n, frame, counters, timeline) -> const uint32_t*   the slots by
-//                                               timestamp (lastUsedFrame), oldest first; the free
-//                                               list's length into counters[COUNTER_FREE_COUNT]
-//                                               (freeListLength of the slots stamped 0 and of
-//                                               those stamped before `frame`), on the backend
+//   buildLruOrder(timestamps, n, frame, counters, timeline) -> const uint32_t*   the slots by
+//                                               last-used frame, oldest first (lru_order.h, from
+//                                               the order it built before); the free list's
+//                                               length into counters[COUNTER_FREE_COUNT]
+//                                               (lruFreeListLength), on the backend
 //   countUnsampled(timestamps, n, frame, counters)  the slots' marks at the end of `frame`
 //                                               counted and cleared (takeUnsampled, countSlotMark)
 //   setDeadline(uint64_t* at, uint64_t ns)      *at = the backend's clockNanoseconds() + ns,
 //                                               ordered before the frame's rays
 //   unmapSlots(view, n, timeline)               unmapFreeSlot(view, i) for i < n (cache_ops.h)
 //   settleFresh(view, n, timeline)              settleFreshSlot(view, i) for i < n (cache_ops.h)
-//   lruBytes(), LRU_NAME                        what the sort holds, for the memory report
+//   lruBytes(), LRU_NAME                        what the LRU order holds, for the memory report
 #pragma once
 
 #include <cstdint>
@@ -155,9 +155,10 @@ class BrickCache {
  private:
   // The free slot list from the LRU order, its slots unmapped. Its length stays on the backend
   // (COUNTER_FREE_COUNT): the kernels that follow read it there, and the host does not wait for
-  // the sort (H100: pt's first render task came 194 -> 134 us into perlin's frame 12).
+  // the order (H100: pt's first render task came 194 -> 134 us into perlin's frame 12).
   void takeFreeList() {
-    freeSlots_ = ops_.sortLru(timestamps_.data(), poolBricks_, frame_, counters_.data(), timeline_);
+    freeSlots_ =
+        ops_.buildLruOrder(timestamps_.data(), poolBricks_, frame_, counters_.data(), timeline_);
     ops_.zero(counters_.data() + COUNTER_FREE_NEXT, 1);
     ops_.unmapSlots(view(), poolBricks_, timeline_);
     ++refills_;

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <numeric>
 
 #include "gvdp/base/clock.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/cache_ops.h"
+#include "gvdp/cache/lru_order.h"
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp::detail {
@@ -28,18 +30,29 @@ void HostCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs, const T
       static_cast<uint8_t>(TaskKind::Cache));
 }
 
-const uint32_t* HostCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                                      uint32_t* counters, const TimelineView&) {
-  for (uint32_t s = 0; s < n; ++s)
-    order_[s] = (static_cast<uint64_t>(lastUsedFrame(timestamps[s])) << 32) | s;
-  std::sort(order_.begin(), order_.begin() + n);
-  auto below = [&](uint64_t stamp) {
-    return static_cast<uint32_t>(std::lower_bound(order_.begin(), order_.begin() + n, stamp << 32) -
-                                 order_.begin());
-  };
-  counters[COUNTER_FREE_COUNT] = freeListLength(n, below(1), below(frame));
-  for (uint32_t i = 0; i < n; ++i) slots_[i] = static_cast<uint32_t>(order_[i]);
-  return slots_.data();
+HostCacheOps::HostCacheOps(uint32_t poolBricks) : order_(poolBricks), next_(poolBricks) {
+  std::iota(order_.begin(), order_.end(), 0u);  // a pool never used, in order
+}
+
+const uint32_t* HostCacheOps::buildLruOrder(const uint32_t* timestamps, uint32_t n, uint32_t frame,
+                                            uint32_t* counters, const TimelineView&) {
+  uint32_t size[LRU_PARTS] = {};
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t part = lruPartByIndex(lastUsedFrame(timestamps[i]), builtAt_);
+    if (part < LRU_PARTS) ++size[part];
+    if (lruKept(lastUsedFrame(timestamps[order_[i]]), builtAt_)) ++size[LRU_KEPT];
+  }
+  uint32_t at[LRU_PARTS] = {};
+  for (uint32_t part = 1; part < LRU_PARTS; ++part) at[part] = at[part - 1] + size[part - 1];
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t part = lruPartByIndex(lastUsedFrame(timestamps[i]), builtAt_);
+    if (part < LRU_PARTS) next_[at[part]++] = i;
+    if (lruKept(lastUsedFrame(timestamps[order_[i]]), builtAt_)) next_[at[LRU_KEPT]++] = order_[i];
+  }
+  counters[COUNTER_FREE_COUNT] = lruFreeListLength(n, size, builtAt_, frame);
+  order_.swap(next_);
+  builtAt_ = frame;
+  return order_.data();
 }
 
 void HostCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,

@@ -1,20 +1,16 @@
 #include "gvdp/cache/brick_cache_cuda.h"
 
-#include <algorithm>
-#include <bit>
+#include <utility>
 
 #include "gvdp/cache/cache_kernels.h"
+#include "gvdp/cache/lru_order.h"
 
 namespace gvdp::detail {
 
 CudaCacheOps::CudaCacheOps(uint32_t poolBricks, cudaStream_t stream)
-    : stream_(stream),
-      keysIn_(poolBricks),
-      keysOut_(poolBricks),
-      valuesIn_(poolBricks),
-      valuesOut_(poolBricks),
-      counts_(2),
-      temp_(lruSortTempBytes(poolBricks)) {}
+    : stream_(stream), order_(poolBricks), next_(poolBricks), tileSizes_(lruTileCount(poolBricks)) {
+  launchIota(order_.data(), poolBricks, stream_);  // a pool never used, in order
+}
 
 void CudaCacheOps::zero(uint32_t* p, size_t n) const {
   fillDevice(p, 0, n * sizeof(uint32_t), stream_);
@@ -30,18 +26,14 @@ void CudaCacheOps::resetSlabs(const CacheView& v, const SlabJobs& slabs,
   launchResetSlabs(v, slabs, t, stream_);
 }
 
-const uint32_t* CudaCacheOps::sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                                      uint32_t* counters, const TimelineView& t) {
-  NvtxRange range("cache: LRU sort");
-  launchPrepareLruSort(timestamps, keysIn_.data(), valuesIn_.data(), n, t, stream_);
-  int endBit = std::max(1, static_cast<int>(std::bit_width(frame)));
-  lruSort(temp_.data(), temp_.size(), keysIn_.data(), keysOut_.data(), valuesIn_.data(),
-          valuesOut_.data(), n, endBit, stream_);
-  zero(counts_.data(), 2);
-  launchCountOlder(keysOut_.data(), n, 1u, counts_.data(), t, stream_);
-  launchCountOlder(keysOut_.data(), n, frame, counts_.data() + 1, t, stream_);
-  launchFreeListLength(counts_.data(), n, counters, stream_);
-  return valuesOut_.data();
+const uint32_t* CudaCacheOps::buildLruOrder(const uint32_t* timestamps, uint32_t n, uint32_t frame,
+                                            uint32_t* counters, const TimelineView& t) {
+  NvtxRange range("cache: LRU order");
+  launchLruOrder(timestamps, order_.data(), next_.data(), n, builtAt_, frame, tileSizes_.data(),
+                 counters, t, stream_);
+  std::swap(order_, next_);
+  builtAt_ = frame;
+  return order_.data();
 }
 
 void CudaCacheOps::unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const {
@@ -66,8 +58,7 @@ void CudaCacheOps::setDeadline(uint64_t* at, uint64_t ns) const {
 }
 
 size_t CudaCacheOps::lruBytes() const {
-  return keysIn_.bytes() + keysOut_.bytes() + valuesIn_.bytes() + valuesOut_.bytes() +
-         temp_.bytes();
+  return order_.bytes() + next_.bytes() + tileSizes_.bytes();
 }
 
 }  // namespace gvdp::detail

@@ -1,6 +1,5 @@
 // The CUDA backend's brick cache: BrickCache (brick_cache.h) over device buffers, the bodies of
-// cache_ops.h launched from cache_kernels.cu, the LRU order by a CUB radix sort of the
-// timestamps.
+// cache_ops.h launched from cache_kernels.cu, the LRU order rebuilt in two kernels (lru_order.h).
 #pragma once
 
 #include <cstdint>
@@ -14,7 +13,7 @@ class CudaCacheOps {
  public:
   template <class T>
   using Buffer = DeviceBuffer<T>;
-  static constexpr const char* LRU_NAME = "free_slot_list_and_lru_sort";
+  static constexpr const char* LRU_NAME = "lru_order";
 
   // Every operation runs on `stream` (the scheduler's).
   CudaCacheOps(uint32_t poolBricks, cudaStream_t stream);
@@ -26,8 +25,8 @@ class CudaCacheOps {
   void zero(uint32_t* p, size_t n) const;
   void read(const uint32_t* from, uint32_t* to, size_t n) const;  // synchronises
   void resetSlabs(const CacheView& v, const SlabJobs& slabs, const TimelineView& t) const;
-  const uint32_t* sortLru(const uint32_t* timestamps, uint32_t n, uint32_t frame,
-                          uint32_t* counters, const TimelineView& t);
+  const uint32_t* buildLruOrder(const uint32_t* timestamps, uint32_t n, uint32_t frame,
+                                uint32_t* counters, const TimelineView& t);
   void unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters) const;
   void settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const;
@@ -36,8 +35,9 @@ class CudaCacheOps {
 
  private:
   cudaStream_t stream_;
-  DeviceBuffer<uint32_t> keysIn_, keysOut_, valuesIn_, valuesOut_, counts_;
-  DeviceBuffer<uint8_t> temp_;
+  DeviceBuffer<uint32_t> order_, next_;  // the LRU order and the next, built from it (lru_order.h)
+  DeviceBuffer<uint64_t> tileSizes_;     // each tile's part sizes (launchLruOrder)
+  uint32_t builtAt_ = 0;                 // the frame order_ was built in
 };
 
 using BrickCacheCuda = BrickCache<CudaCacheOps>;

@@ -1,9 +1,11 @@
-// CUDA kernels of the cache maintenance: clipmap slab reset, LRU sort (CUB), unmapping, the
-// frame's deadline, the fresh marks' settling.
-#include <cub/device/device_radix_sort.cuh>
+// CUDA kernels of the cache maintenance: clipmap slab reset, the LRU order (lru_order.h),
+// unmapping, the frame's deadline, the fresh marks' settling.
+#include <cub/block/block_reduce.cuh>
+#include <cub/block/block_scan.cuh>
 
 #include "gvdp/base/clock.h"
 #include "gvdp/cache/cache_kernels.h"
+#include "gvdp/cache/lru_order.h"
 #include "gvdp/profile/parallel_for.cuh"
 
 namespace gvdp::detail {
@@ -14,38 +16,137 @@ void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const Timeli
                   [=] __device__(uint32_t i) { resetSlabItem(cache, jobs, i); });
 }
 
-void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n,
-                          const TimelineView& timeline, cudaStream_t stream) {
-  parallelForCuda("cache: LRU sort keys", stream, n, timeline, TaskKind::Cache,
-                  [=] __device__(uint32_t i) {
-                    keys[i] = lastUsedFrame(timestamps[i]);
-                    values[i] = i;
-                  });
+void launchIota(uint32_t* out, uint32_t n, cudaStream_t stream) {
+  parallelForCuda("cache: iota", stream, n, TimelineView{}, TaskKind::Cache,
+                  [=] __device__(uint32_t i) { out[i] = i; });
 }
 
-size_t lruSortTempBytes(uint32_t n) {
-  size_t bytes = 0;
-  cub::DeviceRadixSort::SortPairs(
-      nullptr, bytes, static_cast<const uint32_t*>(nullptr), static_cast<uint32_t*>(nullptr),
-      static_cast<const uint32_t*>(nullptr), static_cast<uint32_t*>(nullptr), n);
-  return bytes;
+namespace {
+
+constexpr int LRU_THREADS = 256;
+constexpr int LRU_ITEMS = static_cast<int>(LRU_TILE) / LRU_THREADS;  // per thread, in index order
+static_assert(LRU_TILE < (1u << 16), "a tile's part sizes are 16-bit fields");
+
+// One count in part `part`'s 16-bit field (none for LRU_PARTS).
+__device__ uint64_t lruField(uint32_t part) {
+  return part < LRU_PARTS ? 1ull << (16 * part) : 0ull;
 }
 
-void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* keysOut,
-             const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit,
-             cudaStream_t stream) {
-  GVDP_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp, tempBytes, keysIn, keysOut, valuesIn,
-                                                  valuesOut, n, 0, endBit, stream));
+__device__ uint32_t lruFieldOf(uint64_t sizes, uint32_t part) {
+  return static_cast<uint32_t>(sizes >> (16 * part)) & 0xffffu;
 }
 
-void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
-                      const TimelineView& timeline, cudaStream_t stream) {
-  // Sorted ascending: the keys below `frame` are a prefix; its last element writes the length.
-  parallelForCuda("cache: count older", stream, n, timeline, TaskKind::Cache,
-                  [=] __device__(uint32_t i) {
-                    if (sortedKeys[i] < frame && (i + 1 == n || sortedKeys[i + 1] >= frame))
-                      *count = i + 1;
-                  });
+// Thread threadIdx.x's items of the tile: from the index the part (lruPartByIndex) of slot i, from
+// the last order its slot order[i] if it is kept (else MAX_SLOTS); their sizes in 16-bit fields.
+struct LruItems {
+  uint32_t part[LRU_ITEMS], kept[LRU_ITEMS];
+  uint64_t sizes = 0;
+
+  __device__ LruItems(const uint32_t* timestamps, const uint32_t* order, uint32_t n,
+                      uint32_t builtAt) {
+    uint32_t first = blockIdx.x * LRU_TILE + threadIdx.x * LRU_ITEMS;
+    for (int j = 0; j < LRU_ITEMS; ++j) {
+      uint32_t i = first + static_cast<uint32_t>(j);
+      part[j] = LRU_PARTS;
+      kept[j] = MAX_SLOTS;
+      if (i >= n) continue;
+      part[j] = lruPartByIndex(lastUsedFrame(timestamps[i]), builtAt);
+      uint32_t slot = order[i];
+      if (lruKept(lastUsedFrame(timestamps[slot]), builtAt)) kept[j] = slot;
+      sizes += lruField(part[j]) + (kept[j] != MAX_SLOTS ? lruField(LRU_KEPT) : 0ull);
+    }
+  }
+};
+
+// Pass 1: each tile's part sizes.
+__global__ void __launch_bounds__(LRU_THREADS)
+    lruTileSizesKernel(const uint32_t* timestamps, const uint32_t* order, uint32_t n,
+                       uint32_t builtAt, uint64_t* tileSizes, TimelineView timeline) {
+  BlockTimer timer(timeline, TaskKind::Cache);
+  using Reduce = cub::BlockReduce<uint64_t, LRU_THREADS>;
+  __shared__ typename Reduce::TempStorage temp;
+  LruItems items(timestamps, order, n, builtAt);
+  uint64_t sizes = Reduce(temp).Sum(items.sizes);
+  if (threadIdx.x == 0) tileSizes[blockIdx.x] = sizes;
+}
+
+// The tiles' part sizes before this one and in all, per part.
+struct LruSums {
+  uint32_t before[LRU_PARTS], all[LRU_PARTS];
+};
+
+struct AddLruSums {
+  __device__ LruSums operator()(const LruSums& a, const LruSums& b) const {
+    LruSums s;
+    for (uint32_t p = 0; p < LRU_PARTS; ++p) {
+      s.before[p] = a.before[p] + b.before[p];
+      s.all[p] = a.all[p] + b.all[p];
+    }
+    return s;
+  }
+};
+
+// Pass 2: each item to its place, parts one after the other, in item order within a part; the
+// free list's length from the first tile.
+__global__ void __launch_bounds__(LRU_THREADS)
+    lruScatterKernel(const uint32_t* timestamps, const uint32_t* order, uint32_t* next, uint32_t n,
+                     uint32_t builtAt, uint32_t frame, const uint64_t* tileSizes, uint32_t tiles,
+                     uint32_t* counters, TimelineView timeline) {
+  BlockTimer timer(timeline, TaskKind::Cache);
+  using Reduce = cub::BlockReduce<LruSums, LRU_THREADS>;
+  using Scan = cub::BlockScan<uint64_t, LRU_THREADS>;
+  __shared__ union {
+    typename Reduce::TempStorage reduce;
+    typename Scan::TempStorage scan;
+  } temp;
+  __shared__ uint32_t start[LRU_PARTS];
+  LruSums sums{};
+  for (uint32_t t = threadIdx.x; t < tiles; t += LRU_THREADS) {
+    uint64_t sizes = tileSizes[t];
+    for (uint32_t p = 0; p < LRU_PARTS; ++p) {
+      sums.all[p] += lruFieldOf(sizes, p);
+      if (t < blockIdx.x) sums.before[p] += lruFieldOf(sizes, p);
+    }
+  }
+  sums = Reduce(temp.reduce).Reduce(sums, AddLruSums{});
+  if (threadIdx.x == 0) {
+    uint32_t at = 0;
+    for (uint32_t p = 0; p < LRU_PARTS; ++p) {
+      start[p] = at + sums.before[p];
+      at += sums.all[p];
+    }
+    if (blockIdx.x == 0)
+      counters[COUNTER_FREE_COUNT] = lruFreeListLength(n, sums.all, builtAt, frame);
+  }
+  __syncthreads();
+  LruItems items(timestamps, order, n, builtAt);
+  uint64_t rank;
+  Scan(temp.scan).ExclusiveSum(items.sizes, rank);
+  uint32_t first = blockIdx.x * LRU_TILE + threadIdx.x * LRU_ITEMS;
+  for (int j = 0; j < LRU_ITEMS; ++j) {
+    if (items.part[j] < LRU_PARTS) {
+      next[start[items.part[j]] + lruFieldOf(rank, items.part[j])] =
+          first + static_cast<uint32_t>(j);
+      rank += lruField(items.part[j]);
+    }
+    if (items.kept[j] != MAX_SLOTS) {
+      next[start[LRU_KEPT] + lruFieldOf(rank, LRU_KEPT)] = items.kept[j];
+      rank += lruField(LRU_KEPT);
+    }
+  }
+}
+
+}  // namespace
+
+void launchLruOrder(const uint32_t* timestamps, const uint32_t* order, uint32_t* next, uint32_t n,
+                    uint32_t builtAt, uint32_t frame, uint64_t* tileSizes, uint32_t* counters,
+                    const TimelineView& timeline, cudaStream_t stream) {
+  uint32_t tiles = lruTileCount(n);
+  lruTileSizesKernel<<<tiles, LRU_THREADS, 0, stream>>>(timestamps, order, n, builtAt, tileSizes,
+                                                        timeline);
+  lruScatterKernel<<<tiles, LRU_THREADS, 0, stream>>>(timestamps, order, next, n, builtAt, frame,
+                                                      tileSizes, tiles, counters, timeline);
+  GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
 void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters,
@@ -53,14 +154,6 @@ void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint
   parallelForCuda("cache: count unsampled", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
                     countSlotMark(counters, takeUnsampled(&timestamps[i], frame));
-                  });
-}
-
-void launchFreeListLength(const uint32_t* counts, uint32_t poolBricks, uint32_t* counters,
-                          cudaStream_t stream) {
-  parallelForCuda("cache: free list length", stream, 1, TimelineView{}, TaskKind::Cache,
-                  [=] __device__(uint32_t) {
-                    counters[COUNTER_FREE_COUNT] = freeListLength(poolBricks, counts[0], counts[1]);
                   });
 }
 

@@ -13,22 +13,17 @@ namespace gvdp::detail {
 
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline,
                       cudaStream_t stream);
-// keys[i] = lastUsedFrame(timestamps[i]), values[i] = i.
-void launchPrepareLruSort(const uint32_t* timestamps, uint32_t* keys, uint32_t* values, uint32_t n,
-                          const TimelineView& timeline, cudaStream_t stream);
-size_t lruSortTempBytes(uint32_t n);
-void lruSort(void* temp, size_t tempBytes, const uint32_t* keysIn, uint32_t* keysOut,
-             const uint32_t* valuesIn, uint32_t* valuesOut, uint32_t n, int endBit,
-             cudaStream_t stream);
+// out[i] = i for i < n.
+void launchIota(uint32_t* out, uint32_t n, cudaStream_t stream);
+// next = the LRU order of the n slots in `frame`, from `order` built in frame builtAt
+// (lru_order.h); counters[COUNTER_FREE_COUNT] = the free list's length. tileSizes: lruTileCount(n)
+// words.
+void launchLruOrder(const uint32_t* timestamps, const uint32_t* order, uint32_t* next, uint32_t n,
+                    uint32_t builtAt, uint32_t frame, uint64_t* tileSizes, uint32_t* counters,
+                    const TimelineView& timeline, cudaStream_t stream);
 // The slots' marks at the end of `frame` into `counters` (CacheCounter; takeUnsampled).
 void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters,
                           const TimelineView& timeline, cudaStream_t stream);
-// *count = how many of the first n sorted keys are below frame.
-void launchCountOlder(const uint32_t* sortedKeys, uint32_t n, uint32_t frame, uint32_t* count,
-                      const TimelineView& timeline, cudaStream_t stream);
-// counters[COUNTER_FREE_COUNT] = freeListLength(poolBricks, counts[0], counts[1]) (cache_ops.h).
-void launchFreeListLength(const uint32_t* counts, uint32_t poolBricks, uint32_t* counters,
-                          cudaStream_t stream);
 // *at = the device's clockNanoseconds() + ns, when the stream reaches it.
 void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream);
 // settleFreshSlot(cache, i) for i < n (cache_ops.h).

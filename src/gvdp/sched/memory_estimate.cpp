@@ -4,6 +4,7 @@
 #include "gvdp/base/host_memory.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/clipmap.h"
+#include "gvdp/cache/lru_order.h"
 #include "gvdp/render/march.h"
 #include "gvdp/sched/dp/dp.h"
 #include "gvdp/sched/pt/pt_body.h"
@@ -23,13 +24,11 @@ MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
                     {"indirection_table", clipmapOf(f).entryCount() * sizeof(uint32_t)},
                     {"inverse_table", k * sizeof(BrickKey)},
                     {"timestamps", k * sizeof(uint32_t)}};
-  if (o.backend == Backend::Cuda) {
-    // Keys and values in and out, and cub's scratch: about one more copy of keys and values.
-    m.push_back({"free_slot_list_and_lru_sort", 6 * k * sizeof(uint32_t)});
-  } else {
-    // The slots oldest first and the sort's (timestamp, slot) keys.
-    m.push_back({"free_slot_list_and_lru_sort", k * (sizeof(uint32_t) + sizeof(uint64_t))});
-  }
+  // Two LRU orders (lru_order.h: the free slot list is the head of one, the next is built from
+  // it), and on CUDA each tile's part sizes (cache_kernels.cu).
+  size_t lru = 2 * k * sizeof(uint32_t);
+  if (o.backend == Backend::Cuda) lru += lruTileCount(static_cast<uint32_t>(k)) * sizeof(uint64_t);
+  m.push_back({"lru_order", lru});
   m.push_back({"request_queue", pixels * sizeof(BrickKey)});
   return m;
 }

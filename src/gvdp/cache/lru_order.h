@@ -1,0 +1,53 @@
+// The LRU order of the pool's slots (paper 3.3.4: the free slot list is its head): every slot
+// once, by last-used frame (lastUsedFrame of its timestamp), in index order within a frame - a
+// stable sort of the slots by last-used frame. Both backends rebuild it at each frame's start and
+// mid-frame refill from the order built before, in two passes over the pool and without a sort:
+//
+// Between a build in frame p and the next, a slot's last-used frame changes only to 0 (its entry
+// reset: resetEntry, a cold cache), to p (a ray sampled it, production published it) or to p + 1
+// (pt's prefetch for the next frame; a ray's stamp of p may follow, cache_ops.h). So a slot still
+// in (0, p) had the same frame at the last build, where it stood in order, and the new order is
+//   LRU_UNUSED   the slots at 0, by index
+//   LRU_KEPT     the last order's slots still in (0, p), in that order
+//   LRU_STAMPED  the slots at p, by index
+//   LRU_AHEAD    the slots above p (p + 1), by index.
+// Tests: LruOrder.* (against a sort, over random stamps by these rules, on both backends).
+#pragma once
+
+#include <cstdint>
+
+#include "gvdp/cache/cache_ops.h"
+
+namespace gvdp::detail {
+
+enum LruPart : uint32_t { LRU_UNUSED, LRU_KEPT, LRU_STAMPED, LRU_AHEAD, LRU_PARTS };
+
+// The CUDA build's tiles of the pool (cache_kernels.cu): a tile's part sizes fit 16 bits each.
+constexpr uint32_t LRU_TILE = 2048;
+GVDP_HD GVDP_INLINE uint32_t lruTileCount(uint32_t poolBricks) {
+  return (poolBricks + LRU_TILE - 1) / LRU_TILE;
+}
+
+// The part of slot i taken by index (LRU_PARTS for LRU_KEPT: those come from the last order).
+GVDP_HD GVDP_INLINE uint32_t lruPartByIndex(uint32_t lastUsed, uint32_t builtAt) {
+  if (lastUsed == 0) return LRU_UNUSED;
+  if (lastUsed < builtAt) return LRU_PARTS;
+  return lastUsed == builtAt ? LRU_STAMPED : LRU_AHEAD;
+}
+
+// Whether the last order's slot stays where it was, in LRU_KEPT.
+GVDP_HD GVDP_INLINE bool lruKept(uint32_t lastUsed, uint32_t builtAt) {
+  return lastUsed != 0 && lastUsed < builtAt;
+}
+
+// The free slot list's length (freeListLength) from the parts' sizes, in `frame`: the slots used
+// before it may be freed.
+GVDP_HD GVDP_INLINE uint32_t lruFreeListLength(uint32_t poolBricks, const uint32_t* size,
+                                               uint32_t builtAt, uint32_t frame) {
+  uint32_t older = size[LRU_UNUSED] + size[LRU_KEPT];
+  if (builtAt < frame) older += size[LRU_STAMPED];
+  if (builtAt + 1 < frame) older += size[LRU_AHEAD];
+  return freeListLength(poolBricks, size[LRU_UNUSED], older);
+}
+
+}  // namespace gvdp::detail
