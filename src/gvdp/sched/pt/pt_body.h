@@ -167,7 +167,6 @@ struct PtContext {
   FrameSetup frame;
   CacheView cache;
   RayState* payload;
-  Rgba8* image;  // each pixel written by its ray as it finishes (ptRunRay): no resolve pass
   Ring rays, tasks, freeIds;
   Ring lookaheadIds;                        // values v: task id firstLookaheadId + v
   uint32_t firstLookaheadId;                // ids below come from freeIds
@@ -420,8 +419,7 @@ struct OneLane {
 };
 
 // Algorithm 1 for one ray (pixel < 0: none, for a lane of a warp that has none): marches until
-// it finishes (true: its pixel written, resolvePixel, as a resolve pass would) or is parked
-// (false). The Lanes march together while any of theirs is live;
+// it finishes (true) or is parked (false). The Lanes march together while any of theirs is live;
 // a march may end Paused (a warp's other ray stopped), and goes on. A ray that stops claims the
 // brick if it was MISSING (claimStop: the claim's ring and task code stays out of the march's
 // loop) and parks on its production: parkRay, or on the GPU a warp-aggregated version of it
@@ -444,7 +442,6 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
     if (!live || r == MarchResult::Paused) continue;
     storeRayState(&ctx.payload[p], s);
     if (r == MarchResult::Finished) {
-      ctx.image[p] = resolvePixel(s.colour, ray.d);
       finished = true;
       live = false;
       continue;
@@ -573,14 +570,12 @@ struct PtBuffers {
 
 // The frame's context over a backend's buffers.
 inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayState* payload,
-                               Rgba8* image, const PtBuffers& b, uint32_t lookahead,
-                               uint32_t tailLookahead) {
+                               const PtBuffers& b, uint32_t lookahead, uint32_t tailLookahead) {
   PtContext ctx{};
   ctx.frame = f;
   ctx.cache = cache;
   ctx.cache.degradeOnFailure = 1;
   ctx.payload = payload;
-  ctx.image = image;
   ctx.counters = b.counters;
   auto ring = [&](uint64_t* slots, uint32_t capacity, PtCounter head) {
     return Ring{slots, capacity - 1, ctx.counter(head), ctx.counter(PtCounter(head + 1)),

@@ -30,8 +30,7 @@ class PtCpu final : public SpFrameCpu {
  private:
   void renderFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
     beginRays(f);
-    out = Image(f.width, f.height);
-    PtContext ctx = prepare(f, out);
+    PtContext ctx = prepare(f);
     BrickPool pool = cache_.pool();
     ThreadPool& threads = ThreadPool::global();
     threads.run(
@@ -41,21 +40,18 @@ class PtCpu final : public SpFrameCpu {
           ptWorkerLoop(ctx, w);
         },
         NO_RECORD);
-    // Every ray wrote its pixel as it finished; a resolve pass only for a frame that left rays
-    // unfinished (none should: they are counted), from their payloads.
-    const uint32_t live = *ctx.counter(PT_LIVE_RAYS);
-    stats.unfinishedPixels =
-        live ? std::max<int64_t>(resolveCpu(f, payload_.data(), out), live) : 0;
+    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
     stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
     stats.lookaheadClaims = *ctx.counter(PT_LOOKAHEAD);
     stats.prefetchClaims = *ctx.counter(PT_PREFETCHES);
+    stats.unfinishedPixels = std::max<int64_t>(stats.unfinishedPixels, *ctx.counter(PT_LIVE_RAYS));
     previous_ = f;
   }
 
-  PtContext prepare(const FrameSetup& f, Image& out) {
+  PtContext prepare(const FrameSetup& f) {
     const PtLayout last = layout_;
     layout_ = {static_cast<uint32_t>(f.pixelCount()),
                static_cast<uint32_t>(ThreadPool::global().size())};
@@ -79,7 +75,7 @@ class PtCpu final : public SpFrameCpu {
     waitNext_.assign(layout_.pixels, LIST_END);
     counters_.resize(PtLayout::COUNTERS);
     initialPtCounters(counters_.data(), layout_, keepRings);
-    PtContext ctx = makePtContext(f, cache_.view(), payload_.data(), out.pixels.data(),
+    PtContext ctx = makePtContext(f, cache_.view(), payload_.data(),
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},

@@ -53,22 +53,19 @@ class PtCuda final : public SpFrameCuda {
       cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_, stream());
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
-    // Every ray wrote its pixel as it finished; a resolve pass only for a frame that left rays
-    // unfinished (none should: they are counted), from their payloads.
-    std::vector<uint32_t>& c = hostCounters_;
-    c.resize(counters_.size());
-    readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
-    const uint32_t live = c[PT_LIVE_RAYS * PT_COUNTER_STRIDE];
-    stats.unfinishedPixels = live ? std::max<int64_t>(resolveCuda(f, buffers_, stream()), live) : 0;
+    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
     previous_ = f;
   }
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
     SpFrameCuda::finishFrame(f, out, stats);
-    const std::vector<uint32_t>& c = hostCounters_;
+    std::vector<uint32_t> c(counters_.size());
+    readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
     stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
     stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
     stats.lookaheadClaims = c[PT_LOOKAHEAD * PT_COUNTER_STRIDE];
     stats.prefetchClaims = c[PT_PREFETCHES * PT_COUNTER_STRIDE];
+    stats.unfinishedPixels =
+        std::max<int64_t>(stats.unfinishedPixels, c[PT_LIVE_RAYS * PT_COUNTER_STRIDE]);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
   }
@@ -88,7 +85,7 @@ class PtCuda final : public SpFrameCuda {
 
   // The frame's queues: empty rings, every task id free, every ray fresh and live; its prefetch.
   PtContext prepare(const FrameSetup& f) {
-    PtContext ctx = makePtContext(f, cache_.view(), buffers_.payload.data(), buffers_.image.data(),
+    PtContext ctx = makePtContext(f, cache_.view(), buffers_.payload.data(),
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
@@ -105,7 +102,6 @@ class PtCuda final : public SpFrameCuda {
   }
 
   DeviceBuffer<uint32_t> counters_, waitHead_, waitNext_;
-  std::vector<uint32_t> hostCounters_;  // counters_ at the frame's end
   DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
