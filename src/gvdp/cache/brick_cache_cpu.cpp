@@ -38,16 +38,16 @@ const uint32_t* HostCacheOps::buildLruOrder(const uint32_t* timestamps, uint32_t
                                             uint32_t* counters, const TimelineView&) {
   uint32_t size[LRU_PARTS] = {};
   for (uint32_t i = 0; i < n; ++i) {
-    uint32_t part = lruPartByIndex(lastUsedFrame(timestamps[i]), builtAt_);
-    if (part < LRU_PARTS) ++size[part];
-    if (lruKept(lastUsedFrame(timestamps[order_[i]]), builtAt_)) ++size[LRU_KEPT];
+    LruItem item = lruItemAt(timestamps, order_.data(), i, builtAt_);
+    if (item.part < LRU_PARTS) ++size[item.part];
+    if (item.kept != MAX_SLOTS) ++size[LRU_KEPT];
   }
   uint32_t at[LRU_PARTS] = {};
   for (uint32_t part = 1; part < LRU_PARTS; ++part) at[part] = at[part - 1] + size[part - 1];
   for (uint32_t i = 0; i < n; ++i) {
-    uint32_t part = lruPartByIndex(lastUsedFrame(timestamps[i]), builtAt_);
-    if (part < LRU_PARTS) next_[at[part]++] = i;
-    if (lruKept(lastUsedFrame(timestamps[order_[i]]), builtAt_)) next_[at[LRU_KEPT]++] = order_[i];
+    LruItem item = lruItemAt(timestamps, order_.data(), i, builtAt_);
+    if (item.part < LRU_PARTS) next_[at[item.part]++] = i;
+    if (item.kept != MAX_SLOTS) next_[at[LRU_KEPT]++] = item.kept;
   }
   counters[COUNTER_FREE_COUNT] = lruFreeListLength(n, size, builtAt_, frame);
   order_.swap(next_);

@@ -1,6 +1,8 @@
 #include "gvdp/cache/brick_cache_cuda.h"
 
+#include <numeric>
 #include <utility>
+#include <vector>
 
 #include "gvdp/cache/cache_kernels.h"
 #include "gvdp/cache/lru_order.h"
@@ -9,7 +11,9 @@ namespace gvdp::detail {
 
 CudaCacheOps::CudaCacheOps(uint32_t poolBricks, cudaStream_t stream)
     : stream_(stream), order_(poolBricks), next_(poolBricks), tileSizes_(lruTileCount(poolBricks)) {
-  launchIota(order_.data(), poolBricks, stream_);  // a pool never used, in order
+  std::vector<uint32_t> slots(poolBricks);
+  std::iota(slots.begin(), slots.end(), 0u);  // a pool never used, in order
+  writeDevice(order_.data(), slots.data(), order_.bytes(), stream_);
 }
 
 void CudaCacheOps::zero(uint32_t* p, size_t n) const {

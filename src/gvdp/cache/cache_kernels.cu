@@ -16,11 +16,6 @@ void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const Timeli
                   [=] __device__(uint32_t i) { resetSlabItem(cache, jobs, i); });
 }
 
-void launchIota(uint32_t* out, uint32_t n, cudaStream_t stream) {
-  parallelForCuda("cache: iota", stream, n, TimelineView{}, TaskKind::Cache,
-                  [=] __device__(uint32_t i) { out[i] = i; });
-}
-
 namespace {
 
 constexpr int LRU_THREADS = 256;
@@ -36,10 +31,10 @@ __device__ uint32_t lruFieldOf(uint64_t sizes, uint32_t part) {
   return static_cast<uint32_t>(sizes >> (16 * part)) & 0xffffu;
 }
 
-// Thread threadIdx.x's items of the tile: from the index the part (lruPartByIndex) of slot i, from
-// the last order its slot order[i] if it is kept (else MAX_SLOTS); their sizes in 16-bit fields.
+// Thread threadIdx.x's items of the tile (lruItemAt), in index order, and their sizes in 16-bit
+// fields.
 struct LruItems {
-  uint32_t part[LRU_ITEMS], kept[LRU_ITEMS];
+  LruItem item[LRU_ITEMS];
   uint64_t sizes = 0;
 
   __device__ LruItems(const uint32_t* timestamps, const uint32_t* order, uint32_t n,
@@ -47,13 +42,8 @@ struct LruItems {
     uint32_t first = blockIdx.x * LRU_TILE + threadIdx.x * LRU_ITEMS;
     for (int j = 0; j < LRU_ITEMS; ++j) {
       uint32_t i = first + static_cast<uint32_t>(j);
-      part[j] = LRU_PARTS;
-      kept[j] = MAX_SLOTS;
-      if (i >= n) continue;
-      part[j] = lruPartByIndex(lastUsedFrame(timestamps[i]), builtAt);
-      uint32_t slot = order[i];
-      if (lruKept(lastUsedFrame(timestamps[slot]), builtAt)) kept[j] = slot;
-      sizes += lruField(part[j]) + (kept[j] != MAX_SLOTS ? lruField(LRU_KEPT) : 0ull);
+      item[j] = i < n ? lruItemAt(timestamps, order, i, builtAt) : LruItem{LRU_PARTS, MAX_SLOTS};
+      sizes += lruField(item[j].part) + (item[j].kept != MAX_SLOTS ? lruField(LRU_KEPT) : 0ull);
     }
   }
 };
@@ -124,13 +114,13 @@ __global__ void __launch_bounds__(LRU_THREADS)
   Scan(temp.scan).ExclusiveSum(items.sizes, rank);
   uint32_t first = blockIdx.x * LRU_TILE + threadIdx.x * LRU_ITEMS;
   for (int j = 0; j < LRU_ITEMS; ++j) {
-    if (items.part[j] < LRU_PARTS) {
-      next[start[items.part[j]] + lruFieldOf(rank, items.part[j])] =
-          first + static_cast<uint32_t>(j);
-      rank += lruField(items.part[j]);
+    const LruItem& item = items.item[j];
+    if (item.part < LRU_PARTS) {
+      next[start[item.part] + lruFieldOf(rank, item.part)] = first + static_cast<uint32_t>(j);
+      rank += lruField(item.part);
     }
-    if (items.kept[j] != MAX_SLOTS) {
-      next[start[LRU_KEPT] + lruFieldOf(rank, LRU_KEPT)] = items.kept[j];
+    if (item.kept != MAX_SLOTS) {
+      next[start[LRU_KEPT] + lruFieldOf(rank, LRU_KEPT)] = item.kept;
       rank += lruField(LRU_KEPT);
     }
   }

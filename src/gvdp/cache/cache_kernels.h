@@ -13,8 +13,6 @@ namespace gvdp::detail {
 
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline,
                       cudaStream_t stream);
-// out[i] = i for i < n.
-void launchIota(uint32_t* out, uint32_t n, cudaStream_t stream);
 // next = the LRU order of the n slots in `frame`, from `order` built in frame builtAt
 // (lru_order.h); counters[COUNTER_FREE_COUNT] = the free list's length. tileSizes: lruTileCount(n)
 // words.

@@ -28,16 +28,21 @@ GVDP_HD GVDP_INLINE uint32_t lruTileCount(uint32_t poolBricks) {
   return (poolBricks + LRU_TILE - 1) / LRU_TILE;
 }
 
-// The part of slot i taken by index (LRU_PARTS for LRU_KEPT: those come from the last order).
-GVDP_HD GVDP_INLINE uint32_t lruPartByIndex(uint32_t lastUsed, uint32_t builtAt) {
-  if (lastUsed == 0) return LRU_UNUSED;
-  if (lastUsed < builtAt) return LRU_PARTS;
-  return lastUsed == builtAt ? LRU_STAMPED : LRU_AHEAD;
-}
+// Position i of the pool in a build: slot i's part by index (LRU_PARTS for LRU_KEPT: those come
+// from the last order), and the last order's slot at i if it stays in LRU_KEPT (else MAX_SLOTS).
+struct LruItem {
+  uint32_t part, kept;
+};
 
-// Whether the last order's slot stays where it was, in LRU_KEPT.
-GVDP_HD GVDP_INLINE bool lruKept(uint32_t lastUsed, uint32_t builtAt) {
-  return lastUsed != 0 && lastUsed < builtAt;
+GVDP_HD GVDP_INLINE LruItem lruItemAt(const uint32_t* timestamps, const uint32_t* order, uint32_t i,
+                                      uint32_t builtAt) {
+  uint32_t used = lastUsedFrame(timestamps[i]);
+  uint32_t part = used == 0         ? LRU_UNUSED
+                  : used < builtAt  ? LRU_PARTS
+                  : used == builtAt ? LRU_STAMPED
+                                    : LRU_AHEAD;
+  uint32_t slot = order[i], slotUsed = lastUsedFrame(timestamps[slot]);
+  return {part, slotUsed != 0 && slotUsed < builtAt ? slot : MAX_SLOTS};
 }
 
 // The free slot list's length (freeListLength) from the parts' sizes, in `frame`: the slots used
