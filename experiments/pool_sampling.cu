@@ -99,8 +99,7 @@ __global__ void __launch_bounds__(128, MIN_BLOCKS)
                     uint32_t* stopped) {
   int pixel = tiledPixel(f, static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x));
   if (pixel < 0) return;
-  payload[pixel] = initialRayState();
-  if (renderRay(f, cache, pool, payload, pixel)) atomicAdd(stopped, 1u);
+  if (renderRay(f, cache, pool, payload, pixel, true, FinishedRays{})) atomicAdd(stopped, 1u);
 }
 
 struct Timing {

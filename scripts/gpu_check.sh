@@ -15,6 +15,8 @@
 # Writes to $OUT (or out/gpu_check): device.txt, tests.log, sanitizer.log, renders.log,
 # montage_<scheduler>.png.
 # Usage: scripts/gpu_check.sh [frames] [schedulers...]   (default: 0, all five schedulers)
+#   TOOLS="memcheck racecheck" and POOLS="large tiny" (environment) run only those tools and
+#   pools (default: all four of each); TESTS=0 skips the tests (a call that runs them beside).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out/gpu_check}"
@@ -30,6 +32,10 @@ export GVDP_BIN="$PWD/carry/gvdp"
 } | tee "$out/device.txt"
 status=0
 
+tools=" ${TOOLS:-memcheck initcheck racecheck synccheck} "
+if [ "${TESTS:-1}" = 0 ]; then
+  echo "== tests: skipped (TESTS=0)"
+else
 echo "== tests"
 # Full output and a time limit (the tests take ~210 s on an H100): a run that hangs names its
 # test, and the sanitizers still run (one such run, never reproduced: BENCHMARKS.md, session 18).
@@ -38,11 +44,13 @@ rc=$?
 [ $rc -ne 0 ] && status=1
 [ $rc -eq 124 ] && echo "tests: no end after 420 s, in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
 grep -E "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure" "$out/tests.log" | tail -n 25
+fi
 
 # One sanitizer run: prints "<tool> <scheduler> <pool>: <the tool's summary>", FAIL if the tool
 # found anything or the render failed.
 sanitize() {
   local tool=$1 sched=$2 pool=$3 bin=$4 note=${5:-}
+  [[ "$tools" == *" $tool "* ]] || return 0
   local scene=forest movement=walkthrough args=()
   [ "$pool" = tiny ] && scene=random-spheres movement=backward
   [ "$pool" = tiled ] && movement=backward
@@ -79,7 +87,7 @@ graph_loop=device
 echo "== compute-sanitizer (160x100, 2 frames; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0, tiled: forest backward, 600 bricks)"
 : >"$out/sanitizer.log"
 for sched in "${schedulers[@]}"; do
-  pools=(large tiny late tiled)
+  read -ra pools <<<"${POOLS:-large tiny late tiled}"
   [ "$sched" = direct ] && pools=(none)
   for pool in "${pools[@]}"; do
     sanitize memcheck "$sched" "$pool" ./carry/gvdp

@@ -293,6 +293,27 @@ TEST(PtPrefetch, NoneForAStillCamera) {
   EXPECT_EQ(items(turned), 80u * 50u);
 }
 
+// The prefetch is dense after a frame whose prefetch claimed a brick per PT_PREFETCH_YIELD rays
+// it marched (or after none), a probe of a sixteenth of the rays after one that found less; what
+// a frame's prefetch did is read from its counters, the rays marched no more than it had.
+TEST(PtPrefetch, IsDenseOnlyAfterOneThatYielded) {
+  EXPECT_EQ(prefetchStrideAfter(4, {}), 4u) << "no prefetch before: dense";
+  EXPECT_EQ(prefetchStrideAfter(0, {1000, 0}), 0u) << "off stays off";
+  EXPECT_EQ(prefetchStrideAfter(4, {94000, 23}), 4u) << "23 claims for 94 000 rays";
+  EXPECT_EQ(prefetchStrideAfter(4, {94000, 22}), 16u) << "22 claims: under the yield";
+  EXPECT_EQ(prefetchStrideAfter(4, {94000, 0}), 16u);
+  EXPECT_EQ(prefetchStrideAfter(4, {5900, 2}), 4u) << "a probe that claims goes dense again";
+  EXPECT_EQ(prefetchStrideAfter(4, {5900, 1}), 16u);
+  std::vector<uint32_t> c(PtLayout::COUNTERS, 0u);
+  c[size_t{PT_NEXT_PREFETCH} * PT_COUNTER_STRIDE] =
+      4000 + PT_BATCH;  // batches claimed past the end
+  c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE] = 3;
+  PrefetchYield y = prefetchYield(c.data(), 4000);
+  EXPECT_EQ(y.rays, 4000u);
+  EXPECT_EQ(y.claims, 3u);
+  EXPECT_EQ(prefetchYield(c.data(), 5000).rays, 4000u + PT_BATCH);
+}
+
 // A prefetch march may outlive the frame's rays only once the frame's prefetch has claimed a
 // brick; a relaunched ray's lookahead always goes on.
 TEST(PtPrefetch, MarchesOutliveTheFramesRaysOnlyOnceTheyClaim) {

@@ -61,20 +61,49 @@ struct OneRay {
   }
 };
 
-// Algorithm 1 for one ray from its saved state (pixel < 0: none, for a lane of a warp that has
-// none); true when it stopped on a missing brick (its state is saved and it must be relaunched
-// after production). Used by sp and graph, whose render kernels run while no brick is
-// published: the pool is read-only to them.
+// Where renderRay leaves the rays that finish: their pixels, resolved (resolvePixel, as the
+// resolve pass would from the payload), and their count. sp and graph have no resolve pass: a
+// frame's image is written as its rays finish, and its unfinished pixels are its pixels less
+// `count` (read after the frame's clock). dp and pt, whose rays also finish in their own kernels,
+// resolve every pixel from the payloads instead (their sp-loop sweeps pass none: null, and every
+// ray's state is saved). With an image, only the rays still to march save their state.
+struct FinishedRays {
+  Rgba8* image = nullptr;
+  uint32_t* count = nullptr;
+};
+
+// Adds the rays finished here to `count`: on the GPU one atomic per warp (the lanes here together).
+GVDP_HD GVDP_INLINE void countFinished(uint32_t* count, bool finished) {
+#if GVDP_IS_GPU_CODE
+  unsigned mask = __ballot_sync(__activemask(), finished);
+  if (mask && (threadIdx.x & 31u) == static_cast<unsigned>(__ffs(static_cast<int>(mask)) - 1))
+    atomicAdd(count, static_cast<uint32_t>(__popc(mask)));
+#else
+  if (finished) atomicAdd32(count, 1u);
+#endif
+}
+
+// Algorithm 1 for one ray from its saved state, or from the eye when `fresh` (a frame's first
+// pass: no state saved yet); pixel < 0: none, for a lane of a warp that has none. True when it
+// stopped on a missing brick (its state is saved and it must be relaunched after production). A
+// ray that finishes writes its pixel to `finished`. Used by sp and graph, whose render kernels
+// run while no brick is published: the pool is read-only to them.
 template <class Pool, class Marches = OneRay>
 GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, const Pool& pool,
-                                   RayState* payload, int pixel, Marches marches = {}) {
+                                   RayState* payload, int pixel, bool fresh, FinishedRays finished,
+                                   Marches marches = {}) {
   bool active = pixel >= 0;
   Ray ray = f.primaryRay(active ? pixel % f.width : 0, active ? pixel / f.width : 0);
-  RayState s = active ? payload[pixel] : initialRayState();
+  RayState s = active && !fresh ? payload[pixel] : initialRayState();
   CachedAccess<Pool, QueueRequest, PoolReads::ReadOnly> access{cache, pool, f.lod};
   bool stopped = marches(ray, f.lod, s, access, active) == MarchResult::Stopped;
   access.addCounts();
-  if (active) payload[pixel] = s;
+  bool done = active && s.finished(f.lod);
+  if (finished.image) {
+    if (done) finished.image[pixel] = resolvePixel(s.colour, ray.d);
+    countFinished(finished.count, done);
+  }
+  if (active && !(done && finished.image)) payload[pixel] = s;  // the rays still to march
   return stopped;
 }
 

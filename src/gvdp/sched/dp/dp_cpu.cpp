@@ -117,7 +117,7 @@ class DpCpu final : public SpFrameCpu {
     next_.resize(f.pixelCount());
     live_.resize(f.pixelCount());
     // A degraded frame keeps degrading; the sweep itself may refill the free list.
-    runSpLoopCpu(f, producer(), cache_, payload_.data(), live_, next_,
+    runSpLoopCpu(f, producer(), cache_, payload_.data(), FinishedRays{}, live_, next_,
                  static_cast<uint32_t>(stats.sweptPixels), false, stats);
   }
 

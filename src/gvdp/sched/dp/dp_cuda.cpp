@@ -57,7 +57,7 @@ class DpCuda final : public SpFrameCuda {
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
     sweep(f, stats);  // after the whole tree of device launches: the stream orders it
-    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
+    resolveCuda(f, buffers_, stream());
   }
 
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {

@@ -32,7 +32,7 @@ class GraphCuda final : public SpFrameCuda {
     // A budgeted frame's last claims (no ray stopped on them) are left queued: the host
     // produces them.
     if (loop.exit != GRAPH_DONE || cache_.budgeted()) finishOnHost(f, loop, stats);
-    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
+    resolveCuda(f, buffers_, stream());
   }
 
   // What sp does between passes when the device cannot: refill the free slot list (or degrade

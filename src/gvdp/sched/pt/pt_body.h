@@ -20,7 +20,8 @@
 // Idle-time prefetch (`prefetch`, DEFAULT_PREFETCH; 0: off): a worker with nothing to take and no
 // production to help, while rays of the frame are live (its tail; claimPrefetchItems), unless the
 // camera stands still (setPrefetch), marches rays of the next frame as the camera's motion predicts
-// it (predictNextFrame), one per prefetch x prefetch pixels, as lookaheads from their start
+// it (predictNextFrame), one per prefetch x prefetch pixels (a sixteenth of those after a frame
+// whose prefetch found next to nothing: prefetchStrideAfter), as lookaheads from their start
 // (coarser stand-ins, no waiting, at most MAX_LATE_CLAIMS claims a ray), with ids from a third ring
 // (`prefetchIds`), and only while half the frame's free slots are left (the lookahead's claims
 // too): the frame's own productions never fail for them. A prefetched brick is stamped for the next
@@ -645,6 +646,34 @@ inline bool ptRingsQuiet(const uint32_t* c, const PtLayout& layout) {
     if (tail - head != filled || (r != PT_FREE_RING && ready != filled)) return false;
   }
   return true;
+}
+
+// What a frame's prefetch did, read from its counters `c` at its end: the prefetch rays it marched
+// (of `items`) and the bricks they claimed.
+struct PrefetchYield {
+  uint32_t rays = 0, claims = 0;
+};
+
+inline PrefetchYield prefetchYield(const uint32_t* c, uint32_t items) {
+  uint32_t taken = c[size_t{PT_NEXT_PREFETCH} * PT_COUNTER_STRIDE];  // claimed by batches: may pass
+  return {taken < items ? taken : items, c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE]};
+}
+
+// The prefetch's density follows its yield: after a frame whose prefetch claimed less than a brick
+// per PT_PREFETCH_YIELD rays (the next frame's bricks were resident: ground walked again, a camera
+// that moves through what it has seen), a frame marches one ray per PT_PREFETCH_PROBE^2 of the
+// prefetch's, a probe, until the probe claims at that yield again. A dense prefetch that finds
+// nothing still marches its rays to their 64th brick in the frame's tail, beside the last rays:
+// on random-spheres' walkthrough, whose floor frames' prefetch claimed 1-6 bricks for 94 000
+// rays, the floor was 2.96-3.01 ms against 2.80-2.86 without a prefetch, 2.92-2.96 with the probe
+// (H200, BENCHMARKS.md, session 25).
+// After a frame without a prefetch (the first, a still camera) the prefetch is dense.
+constexpr uint32_t PT_PREFETCH_YIELD = 4096, PT_PREFETCH_PROBE = 4;
+
+inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {
+  if (stride == 0 || last.rays == 0) return stride;
+  return uint64_t{last.claims} * PT_PREFETCH_YIELD >= last.rays ? stride
+                                                                : stride * PT_PREFETCH_PROBE;
 }
 
 // A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from

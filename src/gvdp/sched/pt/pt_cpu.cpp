@@ -48,6 +48,7 @@ class PtCpu final : public SpFrameCpu {
     stats.lookaheadClaims = *ctx.counter(PT_LOOKAHEAD);
     stats.prefetchClaims = *ctx.counter(PT_PREFETCHES);
     stats.unfinishedPixels = std::max<int64_t>(stats.unfinishedPixels, *ctx.counter(PT_LIVE_RAYS));
+    lastPrefetch_ = prefetchYield(counters_.data(), ctx.prefetchItems);
     previous_ = f;
   }
 
@@ -80,7 +81,8 @@ class PtCpu final : public SpFrameCpu {
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
                                   lookahead_, tailLookahead_);
-    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
+    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr,
+                prefetchStrideAfter(prefetch_, lastPrefetch_));
     return ctx;
   }
 
@@ -161,6 +163,7 @@ class PtCpu final : public SpFrameCpu {
   };
 
   uint32_t lookahead_, tailLookahead_, prefetch_;
+  PrefetchYield lastPrefetch_;          // what the last frame's prefetch did
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   PtLayout layout_{};
   std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;

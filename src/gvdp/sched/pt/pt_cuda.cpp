@@ -44,7 +44,7 @@ class PtCuda final : public SpFrameCuda {
     SpFrameCuda::prepareFrame(f);
     resize(f);
   }
-  void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
+  void renderFrame(const FrameSetup& f, Image&, FrameStats&) override {
     NvtxRange range("pt frame");
     cache_.beginFrame(f);
     PtContext ctx = prepare(f);
@@ -53,7 +53,7 @@ class PtCuda final : public SpFrameCuda {
       cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_, stream());
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
-    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
+    resolveCuda(f, buffers_, stream());
     previous_ = f;
   }
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
@@ -68,6 +68,7 @@ class PtCuda final : public SpFrameCuda {
         std::max<int64_t>(stats.unfinishedPixels, c[PT_LIVE_RAYS * PT_COUNTER_STRIDE]);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
+    lastPrefetch_ = prefetchYield(c.data(), prefetchItems_);
   }
 
   void resize(const FrameSetup& f) {
@@ -90,7 +91,9 @@ class PtCuda final : public SpFrameCuda {
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
                                   lookahead_, tailLookahead_);
-    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_);
+    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr,
+                prefetchStrideAfter(prefetch_, lastPrefetch_));
+    prefetchItems_ = ctx.prefetchItems;
     uint32_t* words = productionCounters_.data();
     ctx.productions = {stage_.data(),        productionKey_.data(), words,
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
@@ -106,6 +109,8 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
   uint32_t lookahead_, tailLookahead_, prefetch_;
+  uint32_t prefetchItems_ = 0;          // this frame's prefetch rays
+  PrefetchYield lastPrefetch_;          // what the last frame's prefetch did
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   uint32_t workers_;                    // warps of the persistent kernel
   DeviceBuffer<Rgba8> stage_;

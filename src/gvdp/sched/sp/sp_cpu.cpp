@@ -17,6 +17,7 @@ struct SpStepsCpu {
   const ProducerKernels& producer;
   BrickCacheCpu& cache_;
   RayState* payload;
+  FinishedRays finished;
   std::vector<uint32_t>& live;
   std::vector<uint32_t>& next;
 
@@ -36,7 +37,7 @@ struct SpStepsCpu {
     BrickPool pool = cache_.pool();
     uint32_t nextCount = 0;
     auto renderItem = [&](int pixel) {
-      if (renderRay(f, view, pool, payload, pixel))
+      if (renderRay(f, view, pool, payload, pixel, tiled, finished))
         next[atomicAdd32(&nextCount, 1u)] = static_cast<uint32_t>(pixel);
     };
     if (tiled) {
@@ -59,9 +60,9 @@ struct SpStepsCpu {
 }  // namespace
 
 void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCacheCpu& cache,
-                  RayState* payload, std::vector<uint32_t>& live, std::vector<uint32_t>& next,
-                  uint32_t liveCount, bool tiled, FrameStats& stats) {
-  SpStepsCpu steps{f, producer, cache, payload, live, next};
+                  RayState* payload, FinishedRays finished, std::vector<uint32_t>& live,
+                  std::vector<uint32_t>& next, uint32_t liveCount, bool tiled, FrameStats& stats) {
+  SpStepsCpu steps{f, producer, cache, payload, finished, live, next};
   runSpLoop(steps, liveCount, tiled, stats);
 }
 
@@ -113,8 +114,12 @@ class SpCpu final : public SpFrameCpu {
     size_t n = static_cast<size_t>(f.pixelCount());
     live_.resize(n);
     next_.resize(n);
-    runSpLoopCpu(f, producer(), cache_, payload_.data(), live_, next_, 0, true, stats);
-    stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
+    // Rays write their pixels as they finish (ray_tasks.h: FinishedRays): no resolve pass.
+    out = Image(f.width, f.height);
+    uint32_t finished = 0;
+    runSpLoopCpu(f, producer(), cache_, payload_.data(), {out.pixels.data(), &finished}, live_,
+                 next_, 0, true, stats);
+    stats.unfinishedPixels = f.pixelCount() - int64_t{finished};
     addCacheStats(cache_, stats);
   }
 

@@ -25,13 +25,14 @@ struct SpStepsCuda {
 
   uint32_t renderPass(bool tiled, uint32_t liveCount) {
     NvtxRange range("render pass");
-    fillDevice(b.counters.data(), 0, 4, stream);
+    // The frame's first pass zeroes its finished rays too.
+    fillDevice(b.counters.data(), 0, (tiled ? 3 : 1) * sizeof(uint32_t), stream);
     if (tiled) {
       launchFirstRenderPass(f, cache_.view(), cache_.pool(), b.order, b.payload.data(),
-                            b.next.data(), b.counters.data(), stream);
+                            b.finished(), b.next.data(), b.counters.data(), stream);
     } else {
-      launchRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.live.data(), liveCount,
-                       b.next.data(), b.counters.data(), stream);
+      launchRenderPass(f, cache_.view(), cache_.pool(), b.payload.data(), b.finished(),
+                       b.live.data(), liveCount, b.next.data(), b.counters.data(), stream);
     }
     GVDP_CUDA_CHECK(cudaGetLastError());
     std::swap(b.live, b.next);
@@ -49,13 +50,10 @@ void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, Bri
   runSpLoop(steps, liveCount, tiled, stats);
 }
 
-int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b, cudaStream_t stream) {
+void resolveCuda(const FrameSetup& f, SpBuffersCuda& b, cudaStream_t stream) {
   fillDevice(b.counters.data() + 1, 0, 4, stream);
   launchResolve(f, b.payload.data(), b.image.data(), b.counters.data(), stream);
   GVDP_CUDA_CHECK(cudaGetLastError());
-  uint32_t unfinished = 0;
-  readDevice(&unfinished, b.counters.data() + 1, 4, stream);
-  return unfinished;
 }
 
 void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out, cudaStream_t stream) {
@@ -76,6 +74,9 @@ void SpFrameCuda::prepareFrame(const FrameSetup& f) {
 
 void SpFrameCuda::finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) {
   if (hostImageWanted()) downloadImage(f, buffers_, out, stream());
+  uint32_t c[3];
+  readDevice(c, buffers_.counters.data(), sizeof c, stream());
+  stats.unfinishedPixels = buffers_.raysWritePixels ? f.pixelCount() - c[2] : c[1];
   addCacheStats(cache_, stats);
 }
 
@@ -83,7 +84,9 @@ namespace {
 
 class SpCuda final : public SpFrameCuda {
  public:
-  SpCuda(const SchedulerOptions& o, ProducerKernelsPtr p) : SpFrameCuda(o, std::move(p)) {}
+  SpCuda(const SchedulerOptions& o, ProducerKernelsPtr p) : SpFrameCuda(o, std::move(p)) {
+    buffers_.raysWritePixels = true;
+  }
 
  private:
   void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
@@ -91,7 +94,6 @@ class SpCuda final : public SpFrameCuda {
     cache_.beginFrame(f);
     buffers_.order = tileOrder_.next(f, stream());
     runSpLoopCuda(f, cudaProducer(), cache_, buffers_, 0, true, stats, stream());
-    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
   }
 };
 

@@ -12,29 +12,29 @@ namespace {
 
 __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     firstRenderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, TileOrder order,
-                          RayState* payload, uint32_t* next, uint32_t* passCounters) {
+                          RayState* payload, FinishedRays finished, uint32_t* next,
+                          uint32_t* passCounters) {
   __shared__ WarpMarchShared shared[RENDER_BLOCK_WARPS];
   BlockTimer timer(f.timeline, TaskKind::Render);
   uint32_t start = smCycles();
   int item = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   int pixel = orderedPixel(f, order, item);
-  if (pixel >= 0) payload[pixel] = initialRayState();
-  bool stopped =
-      renderRay(f, cache, pool, payload, pixel, WarpRays{&shared[threadIdx.x / WARP_SIZE]});
+  bool stopped = renderRay(f, cache, pool, payload, pixel, true, finished,
+                           WarpRays{&shared[threadIdx.x / WARP_SIZE]});
   if (threadIdx.x % WARP_SIZE == 0) noteBlockCost(order, item, smCycles() - start);
   appendStopped(stopped, static_cast<uint32_t>(pixel), next, &passCounters[0]);
 }
 
 __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     renderPassKernel(FrameSetup f, CacheView cache, BrickPool pool, RayState* payload,
-                     const uint32_t* live, uint32_t liveCount, uint32_t* next,
-                     uint32_t* passCounters) {
+                     FinishedRays finished, const uint32_t* live, uint32_t liveCount,
+                     uint32_t* next, uint32_t* passCounters) {
   __shared__ WarpMarchShared shared[RENDER_BLOCK_WARPS];
   BlockTimer timer(f.timeline, TaskKind::Render);
   uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   uint32_t pixel = i < liveCount ? live[i] : 0u;
   bool stopped = renderRay(f, cache, pool, payload, i < liveCount ? static_cast<int>(pixel) : -1,
-                           WarpRays{&shared[threadIdx.x / WARP_SIZE]});
+                           false, finished, WarpRays{&shared[threadIdx.x / WARP_SIZE]});
   appendStopped(stopped, pixel, next, &passCounters[0]);
 }
 
@@ -49,18 +49,19 @@ __global__ void compactUnfinishedKernel(FrameSetup f, const RayState* payload, u
 }  // namespace
 
 void launchFirstRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                           const TileOrder& order, RayState* payload, uint32_t* next,
-                           uint32_t* passCounters, cudaStream_t stream) {
+                           const TileOrder& order, RayState* payload, FinishedRays finished,
+                           uint32_t* next, uint32_t* passCounters, cudaStream_t stream) {
   unsigned items = static_cast<unsigned>(orderedItemCount(f));
   firstRenderPassKernel<<<(items + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK, 0, stream>>>(
-      f, cache, pool, order, payload, next, passCounters);
+      f, cache, pool, order, payload, finished, next, passCounters);
 }
 
 void launchRenderPass(const FrameSetup& f, const CacheView& cache, const BrickPool& pool,
-                      RayState* payload, const uint32_t* live, uint32_t liveCount, uint32_t* next,
-                      uint32_t* passCounters, cudaStream_t stream) {
+                      RayState* payload, FinishedRays finished, const uint32_t* live,
+                      uint32_t liveCount, uint32_t* next, uint32_t* passCounters,
+                      cudaStream_t stream) {
   renderPassKernel<<<(liveCount + RENDER_BLOCK - 1) / RENDER_BLOCK, RENDER_BLOCK, 0, stream>>>(
-      f, cache, pool, payload, live, liveCount, next, passCounters);
+      f, cache, pool, payload, finished, live, liveCount, next, passCounters);
 }
 
 void launchCompactUnfinished(const FrameSetup& f, const RayState* payload, uint32_t* live,

@@ -5,18 +5,26 @@
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/cache/brick_cache_cuda.h"
 #include "gvdp/render/march.h"
+#include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/scheduler.h"
 #include "gvdp/sched/tile_order_cuda.h"
 
 namespace gvdp::detail {
 
 // Device buffers of the loop: ray payloads, two live-ray lists, the pass counters
-// ([0] rays stopped in a pass, [1] unfinished at resolve) and the image; the order of the tiled
-// first pass's tiles (sp sets it each frame; row-major otherwise).
+// ([0] rays stopped in a pass, [1] unfinished at resolve, [2] rays finished with their pixel
+// written) and the image; the order of the tiled first pass's tiles (sp sets it each frame;
+// row-major otherwise). With raysWritePixels (sp, graph) a ray writes its pixel as it finishes
+// (ray_tasks.h: FinishedRays) and no resolve pass runs; dp and pt resolve.
 struct SpBuffersCuda {
   DeviceBuffer<RayState> payload;
-  DeviceBuffer<uint32_t> live, next, counters{2}, image;
+  DeviceBuffer<uint32_t> live, next, counters{3}, image;
   TileOrder order;
+  bool raysWritePixels = false;
+
+  FinishedRays finished() {
+    return raysWritePixels ? FinishedRays{image.data(), counters.data() + 2} : FinishedRays{};
+  }
 
   void resize(size_t pixels) {
     if (payload.size() == pixels) return;
@@ -36,8 +44,9 @@ void runSpLoopCuda(const FrameSetup& f, const CudaProducerKernels& producer, Bri
                    cudaStream_t stream);
 
 // The frame of every cached CUDA scheduler around the sp loop's buffers (sp, graph; dp and pt
-// add their own): the brick cache and the buffers sized before the clock, the image downloaded
-// and the cache's statistics reported after it. Derived schedulers write renderFrame.
+// add their own): the brick cache and the buffers sized before the clock; the image downloaded,
+// the unfinished pixels counted and the cache's statistics reported after it, so that no host
+// round trip ends the frame's clock. Derived schedulers write renderFrame.
 class SpFrameCuda : public Scheduler {
  public:
   SpFrameCuda(const SchedulerOptions& o, ProducerKernelsPtr producer)
@@ -56,8 +65,9 @@ class SpFrameCuda : public Scheduler {
   TileOrderCuda tileOrder_;  // sp's and pt's
 };
 
-// Resolves to b.image; returns the unfinished pixels.
-int64_t resolveCuda(const FrameSetup& f, SpBuffersCuda& b, cudaStream_t stream);
+// Resolves b.payload to b.image; the unfinished pixels are counted in b.counters[1] (read after
+// the frame's clock: SpFrameCuda::finishFrame).
+void resolveCuda(const FrameSetup& f, SpBuffersCuda& b, cudaStream_t stream);
 void downloadImage(const FrameSetup& f, const SpBuffersCuda& b, Image& out, cudaStream_t stream);
 
 }  // namespace gvdp::detail
