@@ -16,7 +16,7 @@
 # montage_<scheduler>.png.
 # Usage: scripts/gpu_check.sh [frames] [schedulers...]   (default: 0, all five schedulers)
 #   TOOLS="memcheck racecheck" and POOLS="large tiny" (environment) run only those tools and
-#   pools (default: all four of each); TESTS=0 skips the tests (a call that runs them beside).
+#   pools (default: all four of each); TESTS=0 skips the tests (when another call runs them).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out/gpu_check}"
@@ -33,17 +33,24 @@ export GVDP_BIN="$PWD/carry/gvdp"
 status=0
 
 tools=" ${TOOLS:-memcheck initcheck racecheck synccheck} "
+read -ra pool_list <<<"${POOLS:-large tiny late tiled}"
+for t in $tools; do
+  [[ " memcheck initcheck racecheck synccheck " == *" $t "* ]] || { echo "gpu_check: unknown tool '$t' in TOOLS" >&2 && exit 2; }
+done
+for p in "${pool_list[@]}"; do
+  [[ " large tiny late tiled " == *" $p "* ]] || { echo "gpu_check: unknown pool '$p' in POOLS" >&2 && exit 2; }
+done
 if [ "${TESTS:-1}" = 0 ]; then
   echo "== tests: skipped (TESTS=0)"
 else
-echo "== tests"
-# Full output and a time limit (the tests take ~210 s on an H100): a run that hangs names its
-# test, and the sanitizers still run (one such run, never reproduced: BENCHMARKS.md, session 18).
-timeout 420 ./carry/gvdp_tests >"$out/tests.log" 2>&1
-rc=$?
-[ $rc -ne 0 ] && status=1
-[ $rc -eq 124 ] && echo "tests: no end after 420 s, in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
-grep -E "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure" "$out/tests.log" | tail -n 25
+  echo "== tests"
+  # Full output and a time limit (the tests take ~210 s on an H100): a run that hangs names its
+  # test, and the sanitizers still run (one such run, never reproduced: BENCHMARKS.md, session 18).
+  timeout 420 ./carry/gvdp_tests >"$out/tests.log" 2>&1
+  rc=$?
+  [ $rc -ne 0 ] && status=1
+  [ $rc -eq 124 ] && echo "tests: no end after 420 s, in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
+  grep -E "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure" "$out/tests.log" | tail -n 25
 fi
 
 # One sanitizer run: prints "<tool> <scheduler> <pool>: <the tool's summary>", FAIL if the tool
@@ -59,13 +66,14 @@ sanitize() {
   # The scheduler's own degraded frames (then the cold retries of tiles/tiled_frame.cpp);
   # "tiled": frames that overflow 600 bricks, rendered as tiles.
   [ "$pool" = tiny ] && args+=(--tiles off)
-  # pt with its lookahead and prefetch on (off by default): the protocol with every kind of
-  # claim in it (the second frame prefetches for a third).
-  [ "$sched" = pt ] && args+=(--lookahead 4 --prefetch 2)
+  # pt with its lookahead and prefetch on: the protocol with every kind of claim in it (the second
+  # frame prefetches for a third, whose prefetch is as dense as the second's yield asks).
+  local frames=2
+  [ "$sched" = pt ] && args+=(--lookahead 4 --prefetch 2) && frames=3
   local log=/tmp/sanitize.log
   GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
     --backend cuda --scheduler "$sched" --scene "$scene" --movement "$movement" --width 160 \
-    --height 100 --frames 2 "${args[@]}" --out "/tmp/sanitize_$sched" >"$log" 2>&1
+    --height 100 --frames "$frames" "${args[@]}" --out "/tmp/sanitize_$sched" >"$log" 2>&1
   local rc=$?
   local summary
   summary=$(grep -E "(ERROR|RACECHECK) SUMMARY" "$log" | tail -n 1 | sed 's/^========= //')
@@ -84,10 +92,10 @@ sanitize() {
 }
 
 graph_loop=device
-echo "== compute-sanitizer (160x100, 2 frames; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0, tiled: forest backward, 600 bricks)"
+echo "== compute-sanitizer (160x100, 2 frames, pt 3; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0, tiled: forest backward, 600 bricks)"
 : >"$out/sanitizer.log"
 for sched in "${schedulers[@]}"; do
-  read -ra pools <<<"${POOLS:-large tiny late tiled}"
+  pools=("${pool_list[@]}")
   [ "$sched" = direct ] && pools=(none)
   for pool in "${pools[@]}"; do
     sanitize memcheck "$sched" "$pool" ./carry/gvdp
@@ -99,6 +107,7 @@ for sched in "${schedulers[@]}"; do
       continue
     fi
     if [ "$sched" = dp ]; then
+      [[ "$tools" =~ (init|race|sync)check ]] || continue
       printf "%-9s %-6s %-5s %-4s %s\n" "init/race/sync" dp "$pool" skip \
         "not run: initcheck, racecheck and synccheck do not instrument CUDA Dynamic Parallelism; dp's protocol runs under ThreadSanitizer on its CPU twin (scripts/tsan.sh: DpCpu tests, in CI)"
       continue

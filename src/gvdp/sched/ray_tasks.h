@@ -62,11 +62,11 @@ struct OneRay {
 };
 
 // Where renderRay leaves the rays that finish: their pixels, resolved (resolvePixel, as the
-// resolve pass would from the payload), and their count. sp and graph have no resolve pass: a
-// frame's image is written as its rays finish, and its unfinished pixels are its pixels less
-// `count` (read after the frame's clock). dp and pt, whose rays also finish in their own kernels,
-// resolve every pixel from the payloads instead (their sp-loop sweeps pass none: null, and every
-// ray's state is saved). With an image, only the rays still to march save their state.
+// resolve pass would from the payload), and their count. sp has no resolve pass: a frame's image
+// is written as its rays finish, and its unfinished pixels are its pixels less `count` (read after
+// the frame's clock). dp, pt and graph resolve every pixel from the payloads (dp's sweep and
+// graph's kernels and host fallback pass none: null, and every ray's state is saved). With an
+// image, only the rays still to march save their state.
 struct FinishedRays {
   Rgba8* image = nullptr;
   uint32_t* count = nullptr;
@@ -86,8 +86,9 @@ GVDP_HD GVDP_INLINE void countFinished(uint32_t* count, bool finished) {
 // Algorithm 1 for one ray from its saved state, or from the eye when `fresh` (a frame's first
 // pass: no state saved yet); pixel < 0: none, for a lane of a warp that has none. True when it
 // stopped on a missing brick (its state is saved and it must be relaunched after production). A
-// ray that finishes writes its pixel to `finished`. Used by sp and graph, whose render kernels
-// run while no brick is published: the pool is read-only to them.
+// ray that finishes writes its pixel to `finished` if it has an image (else its state is saved
+// for the resolve). Used by sp and graph, whose render kernels run while no brick is published:
+// the pool is read-only to them.
 template <class Pool, class Marches = OneRay>
 GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, const Pool& pool,
                                    RayState* payload, int pixel, bool fresh, FinishedRays finished,

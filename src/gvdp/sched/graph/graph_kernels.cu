@@ -34,8 +34,8 @@ __global__ void __launch_bounds__(RENDER_BLOCK, RENDER_BLOCKS_PER_SM)
     uint32_t i = base + static_cast<uint32_t>(lane);
     int pixel = -1;
     if (i < count) pixel = tiled ? tiledPixel(f, static_cast<int>(i)) : static_cast<int>(live[i]);
-    // Resolved after the loop: written here, the pixels' pointers spilled in this resident loop
-    // (80 -> 116 bytes; graph's floors 2-3% slower, H200).
+    // graph resolves after its loop: writing the pixels here (FinishedRays) spilled in this
+    // resident loop (80 -> 116 bytes of spill stores; graph's floors 2-3% slower, H200).
     bool stopped = renderRay(f, graphFrame.cache, graphFrame.pool, graphFrame.payload, pixel, tiled,
                              FinishedRays{}, WarpRays{&shared[threadIdx.x / WARP_SIZE]});
     appendStopped(stopped, static_cast<uint32_t>(pixel), next, &loop->nextCount);

@@ -667,7 +667,10 @@ inline PrefetchYield prefetchYield(const uint32_t* c, uint32_t items) {
 // on random-spheres' walkthrough, whose floor frames' prefetch claimed 1-6 bricks for 94 000
 // rays, the floor was 2.96-3.01 ms against 2.80-2.86 without a prefetch, 2.92-2.96 with the probe
 // (H200, BENCHMARKS.md, session 25).
-// After a frame without a prefetch (the first, a still camera) the prefetch is dense.
+// After a frame without a prefetch (the first, a still camera), or one whose tail took none of its
+// rays, the prefetch is dense; a frame whose tail marched few rays and claimed none makes the next
+// one a probe. Either way the frame after a probe that claims, or a dense prefetch that finds
+// nothing, corrects it: a swing of one frame.
 constexpr uint32_t PT_PREFETCH_YIELD = 4096, PT_PREFETCH_PROBE = 4;
 
 inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {

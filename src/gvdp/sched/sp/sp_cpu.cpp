@@ -110,8 +110,11 @@ class SpCpu final : public SpFrameCpu {
 
  private:
   void renderFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
-    beginRays(f);
+    // The first pass starts every ray from the eye (renderRay's `fresh`): the payloads need no
+    // initial states, only room for the rays that stop.
+    cache_.beginFrame(f);
     size_t n = static_cast<size_t>(f.pixelCount());
+    payload_.resize(n);
     live_.resize(n);
     next_.resize(n);
     // Rays write their pixels as they finish (ray_tasks.h: FinishedRays): no resolve pass.

@@ -76,7 +76,7 @@ void SpFrameCuda::finishFrame(const FrameSetup& f, Image& out, FrameStats& stats
   if (hostImageWanted()) downloadImage(f, buffers_, out, stream());
   uint32_t c[3];
   readDevice(c, buffers_.counters.data(), sizeof c, stream());
-  stats.unfinishedPixels = buffers_.raysWritePixels ? f.pixelCount() - c[2] : c[1];
+  stats.unfinishedPixels = buffers_.raysWritePixels ? int64_t{f.pixelCount()} - c[2] : c[1];
   addCacheStats(cache_, stats);
 }
 

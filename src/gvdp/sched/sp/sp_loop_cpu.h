@@ -23,7 +23,8 @@ void runSpLoopCpu(const FrameSetup& f, const ProducerKernels& producer, BrickCac
 int64_t resolveCpu(const FrameSetup& f, const RayState* payload, Image& out);
 
 // The frame of every cached CPU scheduler (sp, dp, pt): the brick cache and one ray payload per
-// pixel, both begun afresh by beginRays(); memory() reports them, derived schedulers add theirs.
+// pixel, both begun afresh by beginRays() (dp, pt; sp starts its rays from the eye); memory()
+// reports them, derived schedulers add theirs.
 class SpFrameCpu : public Scheduler {
  public:
   SpFrameCpu(const SchedulerOptions& o, ProducerKernelsPtr producer);

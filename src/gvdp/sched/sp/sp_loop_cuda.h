@@ -14,8 +14,8 @@ namespace gvdp::detail {
 // Device buffers of the loop: ray payloads, two live-ray lists, the pass counters
 // ([0] rays stopped in a pass, [1] unfinished at resolve, [2] rays finished with their pixel
 // written) and the image; the order of the tiled first pass's tiles (sp sets it each frame;
-// row-major otherwise). With raysWritePixels (sp, graph) a ray writes its pixel as it finishes
-// (ray_tasks.h: FinishedRays) and no resolve pass runs; dp and pt resolve.
+// row-major otherwise). With raysWritePixels (sp) a ray writes its pixel as it finishes
+// (ray_tasks.h: FinishedRays) and no resolve pass runs; dp, pt and graph resolve.
 struct SpBuffersCuda {
   DeviceBuffer<RayState> payload;
   DeviceBuffer<uint32_t> live, next, counters{3}, image;
