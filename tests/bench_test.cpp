@@ -28,6 +28,18 @@ TEST(FrameStats, OnePercentLowAndPercentilesOnSyntheticTimes) {
   EXPECT_DOUBLE_EQ(few.medianMs, 5.0);
 }
 
+// The slowest frame and its bricks over the mean: a spike of the path shows as a ratio above 1.
+TEST(FrameStats, SlowestFrameAndItsBricksOverTheMean) {
+  SlowestFrame s = slowestFrame({2.0, 9.0, 3.0, 2.5}, {100, 700, 100, 100});
+  EXPECT_EQ(s.index, 1u);
+  EXPECT_DOUBLE_EQ(s.bricksOverMean, 700.0 / 250.0);
+  s = slowestFrame({2.0, 2.0, 6.0}, {0, 0, 0});
+  EXPECT_EQ(s.index, 2u);
+  EXPECT_DOUBLE_EQ(s.bricksOverMean, 0.0) << "no bricks: no ratio";
+  EXPECT_EQ(slowestFrame({}, {}).index, 0u);
+  EXPECT_DOUBLE_EQ(slowestFrame({1.0}, {}).bricksOverMean, 0.0) << "sizes differ: nothing";
+}
+
 TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
   BenchOptions o;
   o.scenes = {"aligned-spheres"};
@@ -54,6 +66,12 @@ TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
     EXPECT_EQ(c["unfinished_pixels"], 0);
     EXPECT_GT(c["avg_fps"].get<double>(), 0.0);
     EXPECT_EQ(c["frame_ms"].size(), 2u);
+    EXPECT_EQ(c["frame_bricks"].size(), 2u);
+    int slowest = c["slowest_frame"].get<int>();
+    EXPECT_TRUE(slowest == 1 || slowest == 2) << "a measured frame, counted from the path's start";
+    EXPECT_GE(c["slowest_bricks_x"].get<double>(), 0.0);
+    EXPECT_LE(c["slowest_bricks_x"].get<double>(), 2.0)
+        << "one of two frames: at most twice the mean";
     if (c["scheduler"] == "sp") {
       EXPECT_DOUBLE_EQ(c["speedup_vs_sp"].get<double>(), 1.0);
     }
@@ -62,6 +80,7 @@ TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
   EXPECT_NE(md.find("| walkthrough |"), std::string::npos);
   EXPECT_NE(md.find("aligned-spheres SU dp"), std::string::npos);
   EXPECT_NE(benchCsv(r).find("aligned-spheres,sideways,dp,"), std::string::npos);
+  EXPECT_NE(benchCsv(r).find(",slowest_frame,slowest_bricks_x\n"), std::string::npos);
 }
 
 TEST(Bench, CommandWritesItsOutputsAndRejectsBadLists) {

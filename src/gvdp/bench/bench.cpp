@@ -68,6 +68,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     if (f + 1 < s.frames) prefetched += st.cache.prefetched;
     c.frameMs.push_back(st.ms);
     c.frameWallMs.push_back(wall);
+    c.frameBricks.push_back(st.cache.produced + st.cache.empty);
     bricks += st.cache.produced;
     unsampled += st.cache.unsampled;
     samples += st.cache.samples;
@@ -86,6 +87,9 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   c.medianMs = t.medianMs;
   c.p99Ms = t.p99Ms;
   c.medianWallMs = frameTimeStats(c.frameWallMs).medianMs;
+  SlowestFrame slowest = slowestFrame(c.frameMs, c.frameBricks);
+  c.slowestFrame = o.warmup + static_cast<int>(slowest.index);
+  c.slowestBricks = slowest.bricksOverMean;
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
   c.overproduction = bricks ? static_cast<double>(unsampled) / static_cast<double>(bricks) : 0.0;
@@ -147,13 +151,14 @@ BenchResults runBench(const BenchOptions& o,
       for (SchedulerKind k : o.schedulers) {
         r.cells.push_back(runCell(o, scene, m, k));
         const BenchCell& c = r.cells.back();
-        char line[256];
+        char line[512];
         std::snprintf(line, sizeof line,
                       "%s %s %s: %.1f FPS (1%% low %.1f), %.0f bricks/frame, per ray %.1f samples "
-                      "%.1f lookups %.1f skips, %.1f%% of bricks unsampled",
+                      "%.1f lookups %.1f skips, %.1f%% of bricks unsampled; slowest frame %d "
+                      "(%.1fx the mean bricks)",
                       c.scene.c_str(), c.movement.c_str(), c.scheduler.c_str(), c.avgFps, c.low1Fps,
                       c.bricksPerFrame, c.samplesPerRay, c.lookupsPerRay, c.skipsPerRay,
-                      100.0 * c.overproduction);
+                      100.0 * c.overproduction, c.slowestFrame, c.slowestBricks);
         std::string text = line;
         if (o.budgetMs >= 0.0) {
           std::snprintf(line, sizeof line,
@@ -208,11 +213,14 @@ std::string benchJson(const BenchResults& r) {
                      {"coarser_pixels", c.coarserPixels},
                      {"prefetched_per_frame", c.prefetchedPerFrame},
                      {"prefetch_used", c.prefetchUsed},
+                     {"slowest_frame", c.slowestFrame},
+                     {"slowest_bricks_x", c.slowestBricks},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
                      {"frame_ms", c.frameMs},
-                     {"frame_wall_ms", c.frameWallMs}});
+                     {"frame_wall_ms", c.frameWallMs},
+                     {"frame_bricks", c.frameBricks}});
   }
   nlohmann::json scale = nlohmann::json::array();
   for (const BenchScalePoint& p : r.scale)
@@ -232,14 +240,14 @@ std::string benchCsv(const BenchResults& r) {
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
        "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
        "skips_per_ray,overproduction,within_budget,coarser_pixels,prefetched_per_frame,"
-       "prefetch_used\n";
+       "prefetch_used,slowest_frame,slowest_bricks_x\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
       << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << ',' << c.samplesPerRay
       << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << ','
       << c.withinBudget << ',' << c.coarserPixels << ',' << c.prefetchedPerFrame << ','
-      << c.prefetchUsed << '\n';
+      << c.prefetchUsed << ',' << c.slowestFrame << ',' << c.slowestBricks << '\n';
   return s.str();
 }
 

@@ -44,8 +44,13 @@ struct BenchCell {
   double withinBudget = 0, coarserPixels = 0;
   int64_t unfinishedPixels;
   uint64_t memoryBytes;
-  std::vector<double> frameMs;      // CUDA events (GPU) or wall clock (CPU), per measured frame
-  std::vector<double> frameWallMs;  // host wall clock around each frame's render() call
+  std::vector<double> frameMs;        // CUDA events (GPU) or wall clock (CPU), per measured frame
+  std::vector<double> frameWallMs;    // host wall clock around each frame's render() call
+  std::vector<uint64_t> frameBricks;  // bricks produced and EMPTY, per measured frame
+  // The slowest measured frame (frame_stats.h: slowestFrame): its index on the path (warm-up
+  // frames counted) and its bricks over the cell's mean.
+  int slowestFrame = 0;
+  double slowestBricks = 0;
   MemoryReport memory;
 };
 

@@ -30,6 +30,26 @@ inline FrameTimeStats frameTimeStats(std::vector<double> ms) {
   return s;
 }
 
+// A run's slowest frame (its 1% low with fewer than 100 frames) and what it asked for: its
+// position among the frames, and its bricks (produced and EMPTY) over the run's mean. A slowest
+// frame of several times the mean bricks is a spike of the camera's path (a sphere left, a
+// corridor opening): exact frames produce all of them in that frame, whatever the scheduler.
+struct SlowestFrame {
+  size_t index = 0;
+  double bricksOverMean = 0;
+};
+
+inline SlowestFrame slowestFrame(const std::vector<double>& ms,
+                                 const std::vector<uint64_t>& bricks) {
+  SlowestFrame s;
+  if (ms.empty() || bricks.size() != ms.size()) return s;
+  s.index = static_cast<size_t>(std::max_element(ms.begin(), ms.end()) - ms.begin());
+  double mean = static_cast<double>(std::accumulate(bricks.begin(), bricks.end(), uint64_t{0})) /
+                static_cast<double>(bricks.size());
+  s.bricksOverMean = mean > 0 ? static_cast<double>(bricks[s.index]) / mean : 0.0;
+  return s;
+}
+
 // A budgeted run (--budget-ms): frames whose time was within the budget, and the share of all
 // their pixels that showed a coarser level for a brick that was not ready.
 struct BudgetStats {
