@@ -138,11 +138,13 @@ class Browser:
         return r["result"].get("value")
 
     def wait_for(self, expression, what, seconds=90):
+        """The expression's value once it is truthy."""
         end = time.time() + seconds
         while time.time() < end:
             # The page may still be loading (no element yet): that is not ready, not an error.
-            if self.evaluate(expression, errors_are_false=True):
-                return
+            value = self.evaluate(expression, errors_are_false=True)
+            if value:
+                return value
             time.sleep(0.2)
         fail(f"timed out waiting for {what} ({expression})")
 
@@ -201,13 +203,16 @@ def main():
                          "the first frame on the page")
         browser.wait_for("document.getElementById('overlay').textContent.includes('FPS')",
                          "the overlay's figures")
-        # The picture's rectangle inside its box (object-fit: contain).
-        rect = browser.evaluate(
+        # The picture's rectangle inside its box (object-fit: contain), once the picture has a size
+        # and a box: between two frames (a new one decoding) it may have neither for a moment, and
+        # under load (CI, 2 cores shared with a render) the rectangle once came back as NaN.
+        rect = browser.wait_for(
             "(() => { const v = document.getElementById('view'), r = v.getBoundingClientRect();"
+            " if (!v.naturalWidth || !v.naturalHeight || !r.width || !r.height) return null;"
             " const s = Math.min(r.width / v.naturalWidth, r.height / v.naturalHeight);"
             " const w = v.naturalWidth * s, h = v.naturalHeight * s;"
             " return {x: r.x + (r.width - w) / 2, y: r.y + (r.height - h) / 2, width: w, height: h};"
-            " })()")
+            " })()", "the picture's rectangle")
         shot_a = browser.screenshot()
         pixels_a = region(shot_a, rect)
         check(len(set(pixels_a)) > 50, f"the frame on the page is a picture ({len(set(pixels_a))} colours)")
