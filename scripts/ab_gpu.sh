@@ -49,14 +49,22 @@ for n in names[1:]:
     keys = [k for k in base if k in data[n]]
     fl = gm([med(data[n][k], 'floor_ms') / med(base[k], 'floor_ms') for k in keys])
     fps = gm([med(data[n][k], 'avg_fps') / med(base[k], 'avg_fps') for k in keys])
+    low = gm([med(data[n][k], 'low1_fps') / med(base[k], 'low1_fps') for k in keys])
     unf = sum(int(x['unfinished_pixels']) for k in keys for x in data[n][k])
-    print(f'{n} vs {names[0]}: floors x{fl:.3f}, FPS x{fps:.3f} over {len(keys)} cells, unfinished {unf}')
-print('cell'.ljust(40) + ''.join(f'{n:>22}' for n in names) + '   (floor ms / avg FPS, upper median of rounds)')
+    print(f'{n} vs {names[0]}: floors x{fl:.3f}, FPS x{fps:.3f}, 1% lows x{low:.3f} over {len(keys)} cells, unfinished {unf}')
+# The lookahead issue's figures: cells whose 1% low is >= 75% of their average, the largest
+# over-production (each the upper median of the rounds).
+lows = lambda n: sum(med(c, 'low1_fps') >= 0.75 * med(c, 'avg_fps') for c in data[n].values())
+over = lambda n: max(med(c, 'overproduction') for c in data[n].values())
+for n in names:
+    print(f'{n}: 1% low >= 75% of average in {lows(n)} of {len(data[n])} cells, over-production max {100 * over(n):.1f}%')
+print('cell'.ljust(40) + ''.join(f'{n:>30}' for n in names) + '   (floor ms / avg FPS / 1% low % of avg, upper medians of rounds)')
 for k in base:
     row = ' '.join(k).ljust(40)
     for n in names:
         c = data[n].get(k)
-        row += f'{med(c, "floor_ms"):>12.2f} /{med(c, "avg_fps"):>7.1f}' if c else ' ' * 22
+        row += (f'{med(c, "floor_ms"):>12.2f} /{med(c, "avg_fps"):>7.1f} /{100 * med(c, "low1_fps") / med(c, "avg_fps"):>5.0f}%'
+                if c else ' ' * 30)
     print(row)
 PY
 ) | tee "$results/ab.txt"
