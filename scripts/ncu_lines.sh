@@ -4,8 +4,9 @@
 # line (nvdisasm -g on the binary's cubins; the binary is built with -lineinfo):
 # $OUT/sass_SCENE_SCHED.csv.gz and $OUT/lines_SCENE_SCHED.txt.gz, which scripts/ncu_lines.py joins
 # (per source line) where they land. WHEN: frame20 (frame 20 of `gvdp render`'s walkthrough, the
-# default) or floor (the bench's fourth floor frame: the same pose again from a full cache).
-# Usage: scripts/ncu_lines.sh BIN SCENE [sp|pt] [frame20|floor]   (BIN an absolute path)
+# default), floor (the bench's fourth floor frame: the same pose again from a full cache) or
+# MOVEMENT:FRAME (that frame of `gvdp render`'s path, e.g. spinning:22, a frame that produces).
+# Usage: scripts/ncu_lines.sh BIN SCENE [sp|pt] [frame20|floor|MOVEMENT:FRAME]   (BIN absolute)
 set -uo pipefail
 bin=$1 scene=$2 sched=${3:-sp} when=${4:-frame20}
 case $sched in
@@ -14,12 +15,14 @@ case $sched in
   *) echo "ncu_lines.sh: scheduler '$sched' is not sp or pt" >&2 && exit 2 ;;
 esac
 name=${scene}_$sched
+[[ $when == *:* ]] && name=${scene}_${when/:/_}_$sched
 rep=/tmp/rep_$name
 case $when in
   # One such kernel a frame: 6 warm-up and 32 measured frames, then the floor's.
   floor) skip=41 run=(bench --backend cuda --schedulers "$sched" --scenes "$scene" --movements walkthrough --out /tmp/ncu_lines.json) ;;
   frame20) skip=20 run=(render --backend cuda --scheduler "$sched" --scene "$scene" --movement walkthrough --frames 21 --width 1500 --height 1000 --out /tmp/ncu_out) ;;
-  *) echo "ncu_lines.sh: '$when' is not frame20 or floor" >&2 && exit 2 ;;
+  *:*) skip=${when#*:} run=(render --backend cuda --scheduler "$sched" --scene "$scene" --movement "${when%:*}" --frames $((${when#*:} + 1)) --width 1500 --height 1000 --out /tmp/ncu_out) ;;
+  *) echo "ncu_lines.sh: '$when' is not frame20, floor or MOVEMENT:FRAME" >&2 && exit 2 ;;
 esac
 ncu --section SourceCounters --section WarpStateStats --kernel-name "regex:$kernel" --launch-skip $skip --launch-count 1 -o $rep -f \
   "$bin" "${run[@]}" >/tmp/ncu_$name.log 2>&1 || tail -n 5 /tmp/ncu_$name.log

@@ -394,10 +394,15 @@ GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uin
 
 // How far a ray that stops again looks ahead: `lookahead`, or `tailLookahead` in the frame's
 // tail, where the last chains of productions are what is left of the frame and few rays are left
-// whose work the extra claims could delay.
+// whose work the extra claims could delay; none while production tasks wait unclaimed in the
+// queue (no worker free for them: its claims would only lengthen the queue, and its march run
+// beside the productions crowds the instruction cache). In the frames that produce the most (a
+// sphere exit, a spin) the worker was 77% of its stall samples waiting for instructions (ncu,
+// random-spheres forward frame 17, H100); off under a backlog: 25 pt cells FPS x1.039, 1% lows
+// x1.100 (BENCHMARKS.md, session 27).
 GVDP_HD GVDP_INLINE uint32_t lookaheadBricks(const PtContext& ctx) {
-  return loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) > ctx.tailRays ? ctx.lookahead
-                                                                 : ctx.tailLookahead;
+  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return ctx.tailLookahead;
+  return loadRelaxed32(ctx.tasks.ready) == 0 ? ctx.lookahead : 0u;
 }
 
 struct ParkOne {
