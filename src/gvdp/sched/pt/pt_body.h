@@ -466,21 +466,30 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
   return finished;
 }
 
+// No production's owner (a GPU warp's worker index, pt_worker.cuh), and no task id.
+constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
+
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
 // PT_BATCH items of the screen (tile_order.h), until no ray or task of the frame is left; with none
 // of those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. Both
 // kinds of rays are run at one call site (render), so that the march is inlined once into the GPU
-// kernel. The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread; pt_worker.cuh: a
-// warp, which helps an open production, its block's first):
+// kernel, and so are the samples of a production (help): a GPU warp's produce opens its
+// production, whose samples it computes in the next round as any helper does (a second call site
+// was a second copy of the producer in the worker: 54 KB of forest's SASS, 17 KB of
+// random-spheres'; once: 25 pt cells FPS x1.017, 1% lows x1.029, H100, BENCHMARKS.md session 27).
+// The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread, whose
+// produce does the whole production; pt_worker.cuh: a warp):
 //   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
+//   uint32_t producing()                                    its own open production (or none)
 //   void produce(uint32_t position)                         the task at a claimed position
 //   Batch queued(uint32_t position, uint32_t n)             n claimed relaunched rays
 //   uint32_t claimFresh()                                   first item, itemCount when none is left
 //   Batch fresh(uint32_t first)                             items first .. first + PT_BATCH - 1
 //   void render(const Batch&)                               runs a batch's rays
-//   bool help()                                             helped a production (false: none)
+//   uint32_t findProduction()                               one to help (NO_PRODUCTION: none)
+//   void help(uint32_t owner)                               its samples; the end of its own
 //   uint32_t claimPrefetch()                                first, prefetchItems when none
 //   void prefetch(uint32_t first)                           prefetch rays first .. + PT_BATCH - 1
 //   void idle(), finish()                                   nothing to take; the loop is over
@@ -489,20 +498,26 @@ GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
   while (w.liveWork() != 0) {
     uint32_t position = 0;
     typename Worker::Batch batch;
-    if (w.claim(ctx.tasks, 1, &position)) {
-      w.produce(position);
-      continue;
+    uint32_t production = w.producing();
+    if (production == NO_PRODUCTION) {
+      if (w.claim(ctx.tasks, 1, &position)) {
+        w.produce(position);
+        continue;
+      }
+      if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
+        batch = w.queued(position, n);
+      } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
+        batch = w.fresh(first);
+      } else if (production = w.findProduction(); production == NO_PRODUCTION) {
+        if (uint32_t p = w.claimPrefetch(); p < ctx.prefetchItems)
+          w.prefetch(p);
+        else
+          w.idle();
+        continue;
+      }
     }
-    if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
-      batch = w.queued(position, n);
-    } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
-      batch = w.fresh(first);
-    } else {
-      if (w.help()) continue;
-      if (uint32_t p = w.claimPrefetch(); p < ctx.prefetchItems)
-        w.prefetch(p);
-      else
-        w.idle();
+    if (production != NO_PRODUCTION) {
+      w.help(production);
       continue;
     }
     w.render(batch);

@@ -129,7 +129,10 @@ class PtCpu final : public SpFrameCpu {
     void render(const Batch& b) const {
       timed(TaskKind::Render, [&] { renderRays(b); });
     }
-    static bool help() { return false; }  // a production is one thread's
+    // A production is one thread's: produce does all of it.
+    static uint32_t producing() { return NO_PRODUCTION; }
+    static uint32_t findProduction() { return NO_PRODUCTION; }
+    static void help(uint32_t) {}
     uint32_t claimPrefetch() const { return claimPrefetchItems(ctx); }
     void prefetch(uint32_t first) const {
       timed(TaskKind::Prefetch, [&] {

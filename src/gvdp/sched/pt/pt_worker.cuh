@@ -56,6 +56,10 @@ struct WarpWorkerShared {
   // relaunched rays).
   uint32_t costStart;
   int costFirst;
+  // Lane 0's alone (read through fromLane0): the task whose production this warp opened
+  // (PT_NO_TASK: none) and whether it has chunks (false: the box bound cleared its brick).
+  uint32_t ownTask;
+  bool ownChunks;
 };
 
 __device__ inline uint32_t warpClaim(const Ring& r, uint32_t n, uint32_t* position, int lane) {
@@ -152,7 +156,6 @@ __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, 
 // is reused only by its owner, after its last chunk is done; a helper that claims past the last
 // chunk (a stale `open` bit) does nothing.
 constexpr int PRODUCE_CHUNK = 32, PRODUCE_CHUNKS = (BRICK_SAMPLE_COUNT + 31) / 32;
-constexpr uint32_t NO_PRODUCTION = 0xffffffffu;
 
 // A strong store of a word that other warps read without a barrier.
 __device__ inline void handOver(uint32_t* word, uint32_t value) {
@@ -208,28 +211,41 @@ __device__ void produceChunks(const P& producer, const PtProductions& pp, uint32
   }
 }
 
-// Algorithm 2 by warp `warp` (helped by idle warps), then the task's waiting rays queued again
-// as full warps. A brick the producer's box bound clears is committed EMPTY without chunks.
+// The start of Algorithm 2 by warp `warp`: task `id`'s key and counters in its worker's production,
+// opened to helpers, unless the producer's box bound clears the brick (false: no chunks, the brick
+// is committed EMPTY by closeProductionTask). The warp computes its chunks in the worker loop's
+// next round, as a helper does (pt_body.h: ptWorkerLoop), so the producer is inlined once.
 template <class P>
-__device__ void produceTask(const PtContext& ctx, const BrickPool& pool, const P& producer,
-                            uint32_t id, int warp, int lane) {
+__device__ bool openProductionTask(const PtContext& ctx, const P& producer, uint32_t id, int warp,
+                                   int lane) {
+  const PtProductions& pp = ctx.productions;
+  const uint32_t me = workerOf(warp);
+  BrickKey key = loadTaskKey(ctx, id);
+  if (brickBoundedEmpty(WarpScope{lane}, producer, key)) return false;
+  if (lane == 0) {  // no helper is in this production's words: the last one counted its chunk
+    handOverKey(&pp.key[me], key);
+    handOver(&pp.nonEmpty[me], 0u);
+    handOver(&pp.done[me], 0u);
+    __threadfence();  // release: key and counters before the first claim
+    atomicExch(&pp.next[me], 0u);
+    atomicAdd(pp.openCount, 1u);  // before the bit, so before any helper's decrement
+    __threadfence();
+    atomicOr(&pp.open[me / 32], 1u << me % 32);
+  }
+  __syncwarp();
+  return true;
+}
+
+// The end of Algorithm 2 by warp `warp`, its chunks computed: the helpers' chunks waited for, the
+// brick committed, then the task's waiting rays queued again as full warps.
+template <class P>
+__device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool, const P& producer,
+                                    uint32_t id, bool chunks, int warp, int lane) {
   const PtProductions& pp = ctx.productions;
   const uint32_t me = workerOf(warp);
   BrickKey key = loadTaskKey(ctx, id);
   bool empty = true;
-  if (!brickBoundedEmpty(WarpScope{lane}, producer, key)) {
-    if (lane == 0) {  // no helper is in this production's words: the last one counted its chunk
-      handOverKey(&pp.key[me], key);
-      handOver(&pp.nonEmpty[me], 0u);
-      handOver(&pp.done[me], 0u);
-      __threadfence();  // release: key and counters before the first claim
-      atomicExch(&pp.next[me], 0u);
-      atomicAdd(pp.openCount, 1u);  // before the bit, so before any helper's decrement
-      __threadfence();
-      atomicOr(&pp.open[me / 32], 1u << me % 32);
-    }
-    __syncwarp();
-    produceChunks(producer, pp, me, lane);
+  if (chunks) {
     if (lane == 0) {
       while (loadRelaxed32(&pp.done[me]) < static_cast<uint32_t>(PRODUCE_CHUNKS)) __nanosleep(20);
       __threadfence();  // acquire: every helper's samples
@@ -325,12 +341,20 @@ struct WarpWorker {
   __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
     return warpClaim(r, n, position, lane);
   }
+  __device__ uint32_t producing() const {
+    return fromLane0([&] { return shared.ownTask; }) == PT_NO_TASK ? NO_PRODUCTION
+                                                                   : workerOf(warp());
+  }
   __device__ void produce(uint32_t position) {
     begin(TaskKind::Produce);
     uint32_t id = 0;
     if (lane == 0) id = ringTake(ctx.tasks, position);
-    produceTask(ctx, pool, producer, __shfl_sync(FULL_MASK, id, 0), warp(), lane);
-    worked();
+    id = __shfl_sync(FULL_MASK, id, 0);
+    bool chunks = openProductionTask(ctx, producer, id, warp(), lane);
+    if (lane == 0) {
+      shared.ownTask = id;
+      shared.ownChunks = chunks;
+    }
   }
   // This lane's ray of a batch (-1: none).
   struct Batch {
@@ -362,13 +386,19 @@ struct WarpWorker {
       noteBlockCost(ctx.tiles, shared.costFirst, smCycles() - shared.costStart);
     worked();
   }
-  __device__ bool help() {
-    uint32_t open = openProduction(ctx.productions, lane);
-    if (open == NO_PRODUCTION) return false;
+  __device__ uint32_t findProduction() const { return openProduction(ctx.productions, lane); }
+  // The samples of `owner`'s production; then, the warp's own, its end.
+  __device__ void help(uint32_t owner) {
     begin(TaskKind::Produce);
-    produceChunks(producer, ctx.productions, open, lane);
+    const bool own = owner == workerOf(warp());
+    const uint32_t id = fromLane0([&] { return shared.ownTask; });
+    const bool chunks = fromLane0([&] { return shared.ownChunks ? 1u : 0u; }) != 0;
+    if (!own || chunks) produceChunks(producer, ctx.productions, owner, lane);
+    if (own) {
+      if (lane == 0) shared.ownTask = PT_NO_TASK;
+      closeProductionTask(ctx, pool, producer, id, chunks, warp(), lane);
+    }
     worked();
-    return true;
   }
   __device__ uint32_t claimPrefetch() const {
     return fromLane0([&] { return claimPrefetchItems(ctx); });
@@ -409,7 +439,10 @@ __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
   __shared__ WarpWorkerShared shared[PT_WARPS];
   int lane = static_cast<int>(threadIdx.x & 31);
   WarpWorkerShared& mine = shared[threadIdx.x >> 5];
-  if (lane == 0) mine.span.open = false;  // lane 0's alone: no other lane waits for it
+  if (lane == 0) {  // lane 0's alone: no other lane waits for them
+    mine.span.open = false;
+    mine.ownTask = PT_NO_TASK;
+  }
   WarpWorker<P> w{ctx, pool, producer, lane, mine};
   ptWorkerLoop(ctx, w);
 }
