@@ -390,9 +390,13 @@ struct WarpWorker {
   // The samples of `owner`'s production; then, the warp's own, its end.
   __device__ void help(uint32_t owner) {
     begin(TaskKind::Produce);
-    const bool own = owner == workerOf(warp());
-    const uint32_t id = fromLane0([&] { return shared.ownTask; });
-    const bool chunks = fromLane0([&] { return shared.ownChunks ? 1u : 0u; }) != 0;
+    const bool own = owner == workerOf(warp());  // warp-uniform
+    uint32_t id = PT_NO_TASK;
+    bool chunks = true;
+    if (own) {
+      id = fromLane0([&] { return shared.ownTask; });
+      chunks = fromLane0([&] { return shared.ownChunks ? 1u : 0u; }) != 0;
+    }
     if (!own || chunks) produceChunks(producer, ctx.productions, owner, lane);
     if (own) {
       if (lane == 0) shared.ownTask = PT_NO_TASK;
