@@ -395,17 +395,14 @@ GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uin
 // How far a ray that stops again looks ahead: `lookahead`, or `tailLookahead` in the frame's
 // tail, where the last chains of productions are what is left of the frame and few rays are left
 // whose work the extra claims could delay; none while production tasks wait unclaimed in the
-// queue (no worker free for them: its claims would only lengthen the queue, and its march run
-// beside the productions crowds the instruction cache). In the frames that produce the most (a
-// sphere exit, a spin) the worker was 77% of its stall samples waiting for instructions (ncu,
-// random-spheres forward frame 17, H100); off under a backlog: 25 pt cells FPS x1.039, 1% lows
-// x1.100 (BENCHMARKS.md, session 27).
+// queue or productions are open for helpers (PT_OPEN; the GPU's, 0 on the CPU): workers have
+// production to take, its claims would only lengthen the queue, and its march run beside the
+// productions crowds the instruction cache. In the frames that produce the most (a sphere exit, a
+// spin) the worker was 77% of its stall samples waiting for instructions (ncu, random-spheres
+// forward frame 17, H100). Off under a backlog: 25 pt cells FPS x1.039, 1% lows x1.100; and while
+// productions are open: x1.045, x1.043 (BENCHMARKS.md, sessions 27 and 28).
 GVDP_HD GVDP_INLINE uint32_t lookaheadBricks(const PtContext& ctx) {
   if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return ctx.tailLookahead;
-  // Nor while productions are open for helpers (PT_OPEN; the GPU's, 0 on the CPU): idle warps
-  // have chunks to compute (EXPERIMENT, H100, 25 pt cells against 83148de: FPS x1.036, 1% lows
-  // x1.037, over-production max 6.9%, aligned-spheres spinning's 1% low 36% -> 25%; never run under
-  // the sanitizers or the GPU tests, BENCHMARKS.md session 27).
   return loadRelaxed32(ctx.tasks.ready) == 0 && loadRelaxed32(ctx.counter(PT_OPEN)) == 0
              ? ctx.lookahead
              : 0u;

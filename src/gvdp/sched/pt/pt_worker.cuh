@@ -150,11 +150,11 @@ __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, 
 // Warps of different blocks hand these words to each other, so every access is a strong one at
 // device scope: writes are atomic exchanges, read-modify-writes or relaxed stores, reads relaxed
 // loads, and release/acquire pairs order the data: the owner publishes key and counters (fence,
-// then `next`, then its `open` bit), a helper acquires them by claiming a chunk (atomic on
-// `next`, then fence); every lane of a helper fences its samples before lane 0 counts the chunk
-// in `done`, and the owner acquires them by reading `done` (then every lane fences). A production
-// is reused only by its owner, after its last chunk is done; a helper that claims past the last
-// chunk (a stale `open` bit) does nothing.
+// then `next`, then its `open` bit), a helper acquires them by claiming its first chunk (atomic
+// on `next`, then fence); every lane of a helper fences its samples before lane 0 counts its
+// chunks in `done`, and the owner acquires them by reading `done` (then every lane fences). A
+// production is reused only by its owner, after its last chunk is done; a helper that claims past
+// the last chunk (a stale `open` bit) does nothing.
 constexpr int PRODUCE_CHUNK = 32, PRODUCE_CHUNKS = (BRICK_SAMPLE_COUNT + 31) / 32;
 
 // A strong store of a word that other warps read without a barrier.
@@ -174,40 +174,50 @@ __device__ inline uint32_t workerOf(int warp) {
   return blockIdx.x * PT_WORKER_WARPS + static_cast<uint32_t>(warp);
 }
 
-// Claims and computes chunks of worker `owner`'s production until none is left.
+// Claims and computes chunks of worker `owner`'s production until none is left, then publishes
+// them (samples, nonEmpty, `done`) at once. Until then the owner cannot close the production, so
+// every chunk the warp claims is of the same one: one acquire and one key load a call, and each
+// next claim is in flight while the chunk before it is computed.
 template <class P>
 __device__ void produceChunks(const P& producer, const PtProductions& pp, uint32_t owner,
                               int lane) {
-  for (;;) {
-    uint32_t c = 0;
+  uint32_t c = 0;
+  if (lane == 0) {
+    c = atomicAdd(&pp.next[owner], 1u);
+    __threadfence();  // acquire: the key the owner wrote before opening the production
+  }
+  c = __shfl_sync(FULL_MASK, c, 0);
+  if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return;
+  __syncwarp();  // lane 0's acquire before every lane's read of the key
+  const BrickKey key = loadBrickKey(&pp.key[owner]);
+  uint32_t chunks = 0;
+  bool nonEmpty = false;
+  do {
+    uint32_t next = 0;
     if (lane == 0) {
-      c = atomicAdd(&pp.next[owner], 1u);
-      __threadfence();  // acquire: the key the owner wrote before opening the production
+      // The last chunk is taken: no more help (helpers would spin on an exhausted production).
+      if (c == PRODUCE_CHUNKS - 1) {
+        atomicAnd(&pp.open[owner / 32], ~(1u << owner % 32));
+        atomicSub(pp.openCount, 1u);
+      }
+      next = atomicAdd(&pp.next[owner], 1u);
     }
-    c = __shfl_sync(FULL_MASK, c, 0);
-    if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return;
-    // The last chunk is taken: no more help (helpers would spin on an exhausted production).
-    if (lane == 0 && c == PRODUCE_CHUNKS - 1) {
-      atomicAnd(&pp.open[owner / 32], ~(1u << owner % 32));
-      atomicSub(pp.openCount, 1u);
-    }
-    __syncwarp();  // lane 0's acquire before every lane's read of the key
-    BrickKey key = loadBrickKey(&pp.key[owner]);
     int s = static_cast<int>(c) * PRODUCE_CHUNK + lane;
-    bool nonEmpty = false;
     if (s < BRICK_SAMPLE_COUNT) {
       VoxelSample v = produceBrickSample(producer, key, s);
       storeRelaxed32(&pp.stage[size_t{owner} * BRICK_SAMPLE_COUNT + s], v.rgba);
-      nonEmpty = !v.empty;
+      nonEmpty = nonEmpty || !v.empty;
     }
-    nonEmpty = __any_sync(FULL_MASK, nonEmpty);
-    __threadfence();  // release: this lane's sample before `done`
-    __syncwarp();
-    if (lane == 0) {
-      if (nonEmpty) atomicOr(&pp.nonEmpty[owner], 1u);
-      __threadfence();  // release: nonEmpty before `done`
-      atomicAdd(&pp.done[owner], 1u);
-    }
+    ++chunks;
+    c = __shfl_sync(FULL_MASK, next, 0);
+  } while (c < static_cast<uint32_t>(PRODUCE_CHUNKS));
+  nonEmpty = __any_sync(FULL_MASK, nonEmpty);
+  __threadfence();  // release: this lane's samples before `done`
+  __syncwarp();
+  if (lane == 0) {
+    if (nonEmpty) atomicOr(&pp.nonEmpty[owner], 1u);
+    __threadfence();  // release: nonEmpty before `done`
+    atomicAdd(&pp.done[owner], chunks);
   }
 }
 
