@@ -6,6 +6,7 @@
 #include <random>
 
 #include "gvdp/base/error.h"
+#include "gvdp/cache/produce.h"
 #include "gvdp/world/noise.h"
 #include "gvdp/world/registry.h"
 #include "gvdp/world/spheres.h"
@@ -364,6 +365,44 @@ TEST(BoxBound, PartsGiveTheWholeBoundsAnswer) {
   }
   EXPECT_GT(cleared, 300);
   EXPECT_GT(refused, 300);
+}
+
+// A brick whose box the bound refuses is tested again as sub-boxes (cache/produce.h:
+// brickBoundedEmpty, world/producer.h: boundSplit). Every brick they clear must evaluate EMPTY,
+// sample by sample, and they must clear some that the whole box does not (perlin, fbm, forest);
+// the sphere worlds do not split.
+TEST(BoxBound, SubBoxesClearOnlyBricksThatEvaluateEmpty) {
+  EXPECT_EQ(findScene("random-spheres").world.boundSplit(), 1);
+  EXPECT_EQ(findScene("aligned-spheres").world.boundSplit(), 1);
+  for (const char* name : {"perlin", "fbm", "forest"}) {
+    const SceneInfo& scene = findScene(name);
+    const BuiltinScene world = scene.world;
+    ASSERT_EQ(world.boundSplit(), 3) << name;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> offset(-12.0, 12.0);
+    std::uniform_int_distribution<int> level(0, 2);
+    int refined = 0, refused = 0;
+    for (int i = 0; i < 100000 && refined < 60; ++i) {
+      int l = level(rng);
+      double brick = ldexp(world.voxelSize0(), l) * BRICK_WIDTH;  // bricks near the start
+      auto at = [&](double x) { return static_cast<int>(std::floor((x + offset(rng)) / brick)); };
+      const Vec3d& p = scene.start.position;
+      BrickKey key{{at(p.x), at(p.y), at(p.z)}, l};
+      if (brickBoundedEmpty(world, key)) continue;
+      bool sub = brickBoundedEmpty(ThreadScope{}, world, key);
+      if (!sub) {
+        ++refused;
+        continue;
+      }
+      ++refined;
+      for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s)
+        ASSERT_TRUE(produceBrickSample(world, key, s).empty)
+            << name << ": sample " << s << " of brick (" << key.brick.x << ", " << key.brick.y
+            << ", " << key.brick.z << ") level " << l << ", cleared by its sub-boxes";
+    }
+    EXPECT_GE(refined, 60) << name;
+    EXPECT_GT(refused, 0) << name;
+  }
 }
 
 }  // namespace

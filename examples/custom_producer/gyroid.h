@@ -63,6 +63,10 @@ struct Gyroid {
            gvdp::EMPTY_MARGIN_VOXELS * voxelSize;
   }
 
+  // Optional: a brick whose box the bound refuses is tested again as 3^3 sub-boxes, whose
+  // half-diagonals are a third of its own (gvdp/world/producer.h: boundSplit).
+  GVDP_HD int boundSplit() const { return 3; }
+
   GVDP_HD float voxelSize0() const { return finest; }
 };
 

@@ -32,11 +32,12 @@ struct RandomSpheresBoundParts {
 };
 
 // A built-in world: a producer function of (position, voxel size, seed) at a level-0 voxel size,
-// its box bound and how the bound splits into parts (a type: a comparison of function pointers
-// is no constant expression under GCC's -fsanitize=undefined).
+// its box bound, how the bound splits into parts (a type: a comparison of function pointers
+// is no constant expression under GCC's -fsanitize=undefined) and into sub-boxes (boundSplit,
+// world/producer.h).
 template <VoxelSample (*FN)(Vec3d, float, uint32_t),
           bool (*EMPTY_BOX)(Vec3d, Vec3d, float, uint32_t) = noBoxBound,
-          class PARTS = BoundInOnePart>
+          class PARTS = BoundInOnePart, int SPLIT = 1>
 struct SeededWorld {
   float finest;
   uint32_t seed;
@@ -51,12 +52,15 @@ struct SeededWorld {
     else
       return PARTS::emptyBoxPart(lo, hi, voxelSize, seed, part, parts);
   }
+  GVDP_HD int boundSplit() const { return SPLIT; }
   GVDP_HD float voxelSize0() const { return finest; }
 };
 
-using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox>;
-using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox>;
-using ForestWorld = SeededWorld<produceForest, forestEmptyBox>;
+// The sphere worlds' bounds are distances to their spheres: sub-boxes clear none of the bricks
+// they leave (measured over every brick of 24^3 units, levels 0-3).
+using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox, BoundInOnePart, 3>;
+using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox, BoundInOnePart, 3>;
+using ForestWorld = SeededWorld<produceForest, forestEmptyBox, BoundInOnePart, 3>;
 using RandomSpheresWorld =
     SeededWorld<produceRandomSpheres, randomSpheresEmptyBox, RandomSpheresBoundParts>;
 using AlignedSpheresWorld = SeededWorld<produceAlignedSpheres, alignedSpheresEmptyBox>;
@@ -94,6 +98,9 @@ struct BuiltinScene {
   GVDP_HD bool emptyBoxPart(Vec3d lo, Vec3d hi, float voxelSize, int part, int parts) const {
     return visit(
         [&](const auto& world) { return world.emptyBoxPart(lo, hi, voxelSize, part, parts); });
+  }
+  GVDP_HD int boundSplit() const {
+    return visit([](const auto& world) { return world.boundSplit(); });
   }
   GVDP_HD float voxelSize0() const { return finest; }
 };
