@@ -30,7 +30,7 @@ TileOrder TileOrderCuda::next(const FrameSetup& f, cudaStream_t stream) {
   if (!measured) return {nullptr, cost_[0].data()};
   const uint32_t* cost = cost_[1].data();
   uint32_t *keys = keys_.data(), *blocks = blocks_.data();
-  parallelForCuda("tile order: keys", stream, n, TimelineView{}, TaskKind::Render,
+  parallelForCuda("tile order: keys", stream, n, f.timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
                     int r = reprojectedBlock(f, before, static_cast<int>(i));
                     keys[i] = blockCostKey(neighbourhoodCost(cost, before, r));

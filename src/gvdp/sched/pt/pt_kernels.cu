@@ -22,7 +22,7 @@ void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, bool keepR
   const uint32_t first = keepRings ? static_cast<uint32_t>(PT_FIRST_FRAME_COUNTER) : 0u;
   const uint32_t total = slots + static_cast<uint32_t>(PtLayout::COUNTERS) - first;
   uint32_t* counters = ctx.counters;
-  parallelForCuda("pt: frame start", stream, total, TimelineView{}, TaskKind::Cache,
+  parallelForCuda("pt: frame start", stream, total, ctx.frame.timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
                     if (i >= slots) {
                       uint32_t c = i - slots + first;
