@@ -19,7 +19,7 @@
 //       a brick whose box the bound does not clear is tested again as boundSplit()^3 sub-boxes
 //       (cache/produce.h: brickBoundedEmpty), EMPTY unevaluated when every one is clear. For
 //       bounds that loosen with a box's size (perlin's, fbm's, forest's Taylor and distance
-//       bounds: 3 clears 40-80% of the bricks evaluated only to find them EMPTY); without it, 1.
+//       bounds: 3 clears 36-82% of the bricks evaluated only to find them EMPTY); without it, 1.
 // Both member functions are GVDP_HD (__host__ __device__). The renderer is a template on the
 // producer, instantiated where the type is known (include/gvdp/make_renderer.h).
 #pragma once

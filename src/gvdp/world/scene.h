@@ -57,7 +57,7 @@ struct SeededWorld {
 };
 
 // The sphere worlds' bounds are distances to their spheres: sub-boxes clear none of the bricks
-// they leave (measured over every brick of 24^3 units, levels 0-3).
+// they leave (measured over every brick of x and z 0-24, y -40 to 40, levels 0-3).
 using PerlinWorld = SeededWorld<producePerlin, perlinEmptyBox, BoundInOnePart, 3>;
 using FbmWorld = SeededWorld<produceFbm, fbmEmptyBox, BoundInOnePart, 3>;
 using ForestWorld = SeededWorld<produceForest, forestEmptyBox, BoundInOnePart, 3>;
