@@ -1,12 +1,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <barrier>
 #include <bit>
 #include <cstring>
 #include <map>
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "gvdp/cache/brick_cache_cpu.h"
 #include "gvdp/cache/cached_access.h"
@@ -357,6 +361,100 @@ TEST(Cache, EmptyBoxesNameEmptyBricks) {
     }
     EXPECT_GT(bigger, 0) << name << ": no box beyond one brick per face";
     EXPECT_GT(stretched, 0) << name << ": no box reaching further on one side";
+  }
+}
+
+// N CPU threads as one cooperation scope in lockstep (base/cooperation.h), for the algorithms a
+// GPU warp or block runs as a group: any() meets at barriers. It counts the group's rounds (any).
+struct LockstepShared {
+  explicit LockstepShared(int n) : barrier(n) {}
+  std::barrier<> barrier;
+  std::atomic<uint32_t> word{0};
+  int rounds = 0;
+};
+
+struct LockstepScope {
+  int member, members;
+  LockstepShared* shared;
+  int rank() const { return member; }
+  int size() const { return members; }
+  uint32_t any(uint32_t bits) const {
+    shared->barrier.arrive_and_wait();  // every member has read the last answer
+    if (member == 0) {
+      shared->word = 0u;
+      ++shared->rounds;
+    }
+    shared->barrier.arrive_and_wait();
+    shared->word.fetch_or(bits);
+    shared->barrier.arrive_and_wait();
+    return shared->word;
+  }
+  bool all(bool v) const { return any(v ? 0u : 1u) == 0u; }
+  void sync() const { shared->barrier.arrive_and_wait(); }
+};
+
+// Runs f(scope) on n threads as one group; returns the group's rounds.
+template <class F>
+int runLockstep(int n, F f) {
+  LockstepShared shared(n);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < n; ++i) threads.emplace_back([&, i] { f(LockstepScope{i, n, &shared}); });
+  for (std::thread& t : threads) t.join();
+  return shared.rounds;
+}
+
+// A warp's 32 members grow EMPTY boxes ahead (produce.h: GROW_AHEAD_MEMBERS): each box and each
+// ancestor's box it marks names empty bricks only (corners and bricks inside it evaluated sample
+// by sample), as a lone member's do, in fewer rounds.
+TEST(Cache, GroupsGrowEmptyBoxesAheadInFewerRounds) {
+  std::mt19937 rng(11);
+  const Clipmap clipmap = clipmapOf(frameAt({0.3, 3.0, 0.3}, 0));
+  for (const char* name : {"perlin", "fbm", "forest", "random-spheres"}) {
+    const BuiltinScene& world = findScene(name).world;
+    int rounds[2] = {0, 0}, grown = 0, ancestors = 0;
+    long reach[2] = {0, 0};
+    for (int i = 0; i < 200 && grown < 24; ++i) {
+      int level = static_cast<int>(rng() % 6u);
+      auto coord = [&](int lo, int hi) { return lo + static_cast<int>(rng() % (hi - lo)); };
+      int y = i % 2 ? coord(-4, 400) >> level : coord(-4, 12) >> level;
+      BrickKey key{{coord(-40, 40), y, coord(-40, 40)}, level};
+      if (!brickBoundedEmpty(world, key)) continue;
+      ++grown;
+      for (int g = 0; g < 2; ++g) {
+        std::vector<std::pair<BrickKey, uint32_t>> boxes;
+        rounds[g] += runLockstep(g ? 32 : 1, [&](const LockstepScope& group) {
+          growEmptyBoxes(group, world, key, clipmap, [&](const BrickKey& k, uint32_t e) {
+            if (group.rank() == 0) boxes.push_back({k, e});
+            return k.level + 1 < clipmap.levels;
+          });
+        });
+        ancestors += static_cast<int>(boxes.size()) - 1;
+        for (const auto& [k, e] : boxes) {
+          EmptyReach r = emptyReach(e);
+          reach[g] += r.below.x + r.above.x + r.below.y + r.above.y + r.below.z + r.above.z;
+          for (int c = 0; c < 3; ++c) {  // two opposite corners, a brick inside
+            Vec3i d =
+                c == 0   ? Vec3i{-r.below.x, -r.below.y, -r.below.z}
+                : c == 1 ? r.above
+                         : Vec3i{coord(-r.below.x, r.above.x + 1), coord(-r.below.y, r.above.y + 1),
+                                 coord(-r.below.z, r.above.z + 1)};
+            BrickKey inside{k.brick + d, k.level};
+            for (int s = 0; s < BRICK_SAMPLE_COUNT; s += 7) {
+              VoxelSample v = produceBrickSample(world, inside, s);
+              ASSERT_TRUE(v.empty && v.rgba == 0u)
+                  << name << (g ? " (32 members)" : " (1 member)") << " level " << k.level;
+            }
+          }
+        }
+      }
+    }
+    EXPECT_GE(grown, 12) << name;
+    EXPECT_GT(ancestors, 0) << name << ": no ancestor marked";
+    EXPECT_LT(rounds[1] * 4, rounds[0] * 3)
+        << name << ": rounds " << rounds[1] << " vs " << rounds[0];
+    EXPECT_GT(reach[1] * 10, reach[0] * 9) << name << ": reach " << reach[1] << " vs " << reach[0];
+    std::printf("%s: %d boxes, rounds %d (32 members) vs %d (1), reach %ld vs %ld\n", name, grown,
+                rounds[1], rounds[0], reach[1], reach[0]);
   }
 }
 

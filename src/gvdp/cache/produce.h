@@ -202,64 +202,120 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // the bound's boxes small (a bound from the centre of a box loosens with its diagonal), so the
 // box stretches along the empty directions: up and sideways above a terrain, along a cave.
 //
+// A group of GROW_AHEAD_MEMBERS or more tests more at once (in parallel members, so a round takes
+// as long): beside each growing face's slab alone, the slabs of all growing faces grown together
+// once and twice, and in a level's first round its parent's brick. A box that clears in all its
+// growing faces thus grows two steps a round, and its parent is known when it is grown. A warp's
+// growth took 11.4 rounds of 11-13 us each on average (perlin's walkthrough frame 12, H200,
+// BENCHMARKS.md), the rays on the brick waiting for all of them; a single thread tests only what
+// the step needs.
+//
 // One loop and one call of the producer's bound, which the compiler inlines with the whole
-// world's bound: a step tests the slab of one face (Alone), of the faces grown together
-// (Together), or a parent's brick (Parent).
+// world's bound: a test is the slab of one face (Alone), of a face of the faces grown together
+// (Together, and ahead: once or twice), or a parent's brick (Parent, and ahead).
+constexpr int GROW_TESTS = 6, GROW_AHEAD_TESTS = 3 * 6 + 1, GROW_AHEAD_MEMBERS = GROW_AHEAD_TESTS;
+
 template <class Scope, class P, class Publish>
 GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, BrickKey key,
                                         const Clipmap& clipmap, Publish&& publish) {
   enum class Step : uint8_t { Alone, Together, Parent };
+  constexpr int PARENT_TEST = GROW_AHEAD_TESTS - 1;  // test bits: kind * 6 + face, then this
+  const bool ahead = group.size() >= GROW_AHEAD_MEMBERS;
+  const int tests = ahead ? GROW_AHEAD_TESTS : GROW_TESTS;
+  const int parts = boxPartsFor(group.size(), tests);
   Step step = Step::Alone;
-  EmptyReachCodes codes{}, all{};
+  EmptyReachCodes codes{}, all{}, twice{};
   ExitFaces exits = exitFacesFrom(clipmap, key);
-  uint32_t growing = exits.faces, cleared = 0u;  // one bit per face
-  const int parts = boxPartsFor(group.size(), 6);
+  uint32_t growing = exits.faces, cleared = 0u, again = 0u;  // one bit per face
+  int parent = -1;                                           // its test's answer (-1: none yet)
+  auto growable = [&](uint32_t faces, const EmptyReachCodes& c) {
+    uint32_t g = 0u;
+    for (int f = 0; f < 6; ++f)
+      if ((faces >> f & 1u) && c.face[f] < MAX_EMPTY_REACH_CODE) g |= 1u << f;
+    return g;
+  };
+  auto level = [&] {  // the next brick's growth, from itself
+    codes = {};
+    exits = exitFacesFrom(clipmap, key);
+    growing = exits.faces;
+    parent = -1;
+    step = Step::Alone;
+  };
   for (;;) {
     if (step != Step::Parent && growing == 0u) {  // grown
-      if (!publish(key, emptyEntry(codes))) return;
+      if (!publish(key, emptyEntry(codes)) || parent == 0) return;
       key = {halfFloor(key.brick), key.level + 1};
-      step = Step::Parent;
-    }
-    uint32_t tested = step == Step::Alone ? growing : step == Step::Together ? cleared : 1u;
-    uint32_t failed = 0u;
-    for (int t = group.rank(); t < 6 * parts; t += group.size()) {
-      int f = t / parts;
-      if (!(tested >> f & 1u)) continue;
-      Vec3i lo{0, 0, 0}, hi{0, 0, 0};
-      if (step != Step::Parent) {
-        EmptyReachCodes outer = step == Step::Alone ? grownCodes(codes, 1u << f) : all;
-        EmptyReachCodes inner = outer;
-        inner.face[f] = codes.face[f];
-        slabOf(inner, outer, f, lo, hi);
-      }
-      if (!boxBoundedEmpty(producer, key, lo, hi, t % parts, parts)) failed |= 1u << f;
-    }
-    uint32_t passed = tested & ~group.any(failed);
-    uint32_t take = 0u;
-    if (step == Step::Parent) {
-      if (passed == 0u) return;
-      codes = {};
-      exits = exitFacesFrom(clipmap, key);
-      growing = exits.faces;
-      step = Step::Alone;
-      continue;
-    }
-    if (step == Step::Alone) {
-      cleared = passed;
-      if ((cleared & (cleared - 1u)) != 0u) {  // more than one face: all of them, or the first
-        all = grownCodes(codes, cleared);
-        step = Step::Together;
+      if (parent < 0) {
+        step = Step::Parent;
+      } else {
+        level();
         continue;
       }
-      take = cleared;
-    } else {
+    }
+    uint32_t tested = step == Step::Alone ? growing : step == Step::Together ? cleared : 1u;
+    const bool several = (growing & (growing - 1u)) != 0u;
+    if (ahead && step == Step::Alone) {
+      all = grownCodes(codes, growing);
+      again = growable(growing, all);
+      twice = grownCodes(all, again);
+      tested |= (several ? growing : 0u) << 6 | again << 12;
+      if (parent < 0) tested |= 1u << PARENT_TEST;
+    }
+    uint32_t failed = 0u;
+    for (int t = group.rank(); t < tests * parts; t += group.size()) {
+      const int test = t / parts, f = test % 6, kind = test / 6;
+      if (!(tested >> test & 1u)) continue;
+      BrickKey k = key;
+      Vec3i lo{0, 0, 0}, hi{0, 0, 0};
+      if (test == PARENT_TEST) {
+        k = {halfFloor(key.brick), key.level + 1};
+      } else if (step != Step::Parent) {
+        EmptyReachCodes outer = kind == 2                             ? twice
+                                : kind == 1 || step == Step::Together ? all
+                                                                      : grownCodes(codes, 1u << f);
+        EmptyReachCodes inner = outer;
+        inner.face[f] = kind == 2 ? all.face[f] : codes.face[f];
+        slabOf(inner, outer, f, lo, hi);
+      }
+      if (!boxBoundedEmpty(producer, k, lo, hi, t % parts, parts)) failed |= 1u << test;
+    }
+    const uint32_t passed = tested & ~group.any(failed);
+    if (step == Step::Parent) {
+      if (passed == 0u) return;
+      level();
+      continue;
+    }
+    if (tested >> PARENT_TEST & 1u) parent = static_cast<int>(passed >> PARENT_TEST & 1u);
+    uint32_t take = 0u;
+    if (step == Step::Together) {
       take = passed == cleared ? cleared : exits.firstLeft(codes, cleared);
       step = Step::Alone;
+    } else {
+      const uint32_t alone = passed & 63u;
+      if (ahead && (several ? passed >> 6 & 63u : alone) == growing) {  // all together, once
+        codes = all;
+        growing = again;
+        if (again != 0u && (passed >> 12 & 63u) == again) {  // and twice
+          codes = twice;
+          growing = growable(again, twice);
+        }
+        continue;
+      }
+      cleared = alone;
+      if ((cleared & (cleared - 1u)) != 0u) {  // more than one face: all of them, or the first
+        if (ahead && cleared == growing) {     // all of them were tested together above
+          take = exits.firstLeft(codes, cleared);
+        } else {
+          all = grownCodes(codes, cleared);
+          step = Step::Together;
+          continue;
+        }
+      } else {
+        take = cleared;
+      }
     }
     codes = grownCodes(codes, take);
-    growing = 0u;
-    for (int f = 0; f < 6; ++f)
-      if ((cleared >> f & 1u) && codes.face[f] < MAX_EMPTY_REACH_CODE) growing |= 1u << f;
+    growing = growable(cleared, codes);
   }
 }
 
