@@ -9,10 +9,14 @@
 #define GVDP_HD __host__ __device__
 #define GVDP_DEVICE __device__
 #define GVDP_INLINE __forceinline__
+// Before a host-device template that calls the functor it is given: host code may pass a
+// host-only one (nvcc checks the call only where device code instantiates it).
+#define GVDP_HD_CALLS_FUNCTOR _Pragma("nv_exec_check_disable")
 #else
 #define GVDP_HD
 #define GVDP_DEVICE
 #define GVDP_INLINE inline
+#define GVDP_HD_CALLS_FUNCTOR
 #endif
 
 #if defined(__CUDA_ARCH__)

@@ -1,5 +1,6 @@
-// The kernels of the built-in scenes (world/scene.h: BuiltinScene), instantiated once in the
-// library (builtin_producer.cpp, compiled by nvcc in CUDA builds).
+// The kernels of the built-in scenes (world/scene.h: BuiltinScene), instantiated in the library
+// once per world type (builtin_producer.cpp, compiled by nvcc in CUDA builds): a scene's kernels
+// hold its world's code alone, with no switch over the five at each call.
 #pragma once
 
 #include "gvdp/sched/producer_kernels.h"

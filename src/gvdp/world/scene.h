@@ -1,9 +1,9 @@
 // The five built-in worlds as producers (world/producer.h), each a type of its own, and
-// BuiltinScene, the producer the command line instantiates once: one of the five chosen by tag
-// (docs/STYLE.md 4: no virtual calls in device code). perlin and fbm bound boxes by their
-// gradients and curvature (terrain.h), forest by the height of its trees and the distances of its
-// cells' trees and ground, random-spheres by the spheres of the cells a box overlaps,
-// aligned-spheres by the lattice's sphere nearest the box.
+// BuiltinScene, one of the five chosen by tag (docs/STYLE.md 4: no virtual calls in device
+// code), whose visit gives the library each world's own kernels (sched/builtin_producer.cpp).
+// perlin and fbm bound boxes by their gradients and curvature (terrain.h), forest by the height of
+// its trees and the distances of its cells' trees and ground, random-spheres by the spheres of the
+// cells a box overlaps, aligned-spheres by the lattice's sphere nearest the box.
 #pragma once
 
 #include <cstdint>
@@ -73,7 +73,9 @@ struct BuiltinScene {
   float finest;  // voxel size at level 0, in world units
   uint32_t seed;
 
-  // Calls f with the chosen world (the one switch over the kinds).
+  // Calls f with the chosen world (the one switch over the kinds). Host code calls it with
+  // host-only functors too (sched/builtin_producer.cpp: each world's kernels).
+  GVDP_HD_CALLS_FUNCTOR
   template <class F>
   GVDP_HD auto visit(F f) const {
     switch (kind) {
