@@ -3,7 +3,8 @@
 # binaries interleaved within each round; then, per binary against the first, the geometric means
 # of floor_ms and avg_fps over the cells and each cell's floor and FPS, each the upper median of
 # its rounds (with two rounds, the larger value: the same rule for every binary).
-# Prints the summary and writes it to $OUT/ab.txt; the CSVs, JSONs and logs
+# Prints the summary and writes it to $OUT/ab.txt (rewritten after every round, so a run cut off
+# by a time limit leaves the rounds it finished); the CSVs, JSONs and logs
 # (ab_<name>_<round>.*, name: the binary's folder) to $OUT/ab_results.tgz (the device tool brings
 # back 8 files a call).
 # Extra arguments go to every bench (e.g. --scenes forest).
@@ -19,15 +20,9 @@ shift 3
 bins=()
 while [ $# -gt 0 ] && [ "$1" != "--" ]; do bins+=("$1") && shift; done
 [ $# -gt 0 ] && shift
-for r in $(seq 1 "$rounds"); do
-  for bin in "${bins[@]}"; do
-    name=$(basename "$(dirname "$bin")")
-    "$bin" bench --backend cuda --schedulers "$schedulers" --movements "$movements" "$@" \
-      --out "$out/ab_${name}_$r.json" --csv "$out/ab_${name}_$r.csv" >"$out/ab_${name}_$r.log" 2>&1 ||
-      echo "$name round $r: bench failed ($(tail -n 1 "$out/ab_${name}_$r.log"))"
-  done
-done
-(python3 - "$out" "$rounds" "${bins[@]}" <<'PY'
+# The summary of the rounds done so far (a run cut off by a time limit keeps the last one).
+summary() {
+  python3 - "$out" "$1" "${bins[@]}" <<'PY'
 import csv, math, sys
 out, rounds, bins = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
 names = [b.split('/')[-2] for b in bins]
@@ -45,6 +40,7 @@ data = {n: load(n) for n in names}
 base = data[names[0]]
 gm = lambda xs: math.exp(sum(map(math.log, xs)) / len(xs)) if xs else float('nan')
 med = lambda rows, key: sorted(float(x[key]) for x in rows)[len(rows) // 2]
+print(f'rounds done: {rounds}')
 for n in names[1:]:
     keys = [k for k in base if k in data[n]]
     fl = gm([med(data[n][k], 'floor_ms') / med(base[k], 'floor_ms') for k in keys])
@@ -67,5 +63,15 @@ for k in base:
                 if c else ' ' * 30)
     print(row)
 PY
-) | tee "$results/ab.txt"
-tar czf "$results/ab_results.tgz" -C "$out" .
+}
+for r in $(seq 1 "$rounds"); do
+  for bin in "${bins[@]}"; do
+    name=$(basename "$(dirname "$bin")")
+    "$bin" bench --backend cuda --schedulers "$schedulers" --movements "$movements" "$@" \
+      --out "$out/ab_${name}_$r.json" --csv "$out/ab_${name}_$r.csv" >"$out/ab_${name}_$r.log" 2>&1 ||
+      echo "$name round $r: bench failed ($(tail -n 1 "$out/ab_${name}_$r.log"))"
+  done
+  summary "$r" >"$results/ab.txt"
+  tar czf "$results/ab_results.tgz" -C "$out" .
+done
+cat "$results/ab.txt"
