@@ -14,6 +14,16 @@ case $sched in
   pt) kernel=ptWorkerKernel ;;
   *) echo "ncu_lines.sh: scheduler '$sched' is not sp or pt" >&2 && exit 2 ;;
 esac
+# A built-in world's kernels are its own (sched/builtin_producer.cpp): the cubins hold one worker
+# per world, told apart by the world's producer function in the kernel's name.
+case $scene in
+  perlin) world=producePerlin ;;
+  fbm) world=produceFbm ;;
+  forest) world=produceForest ;;
+  random-spheres) world=produceRandomSpheres ;;
+  aligned-spheres) world=produceAlignedSpheres ;;
+  *) world= ;;
+esac
 name=${scene}_$sched
 [[ $when == *:* ]] && name=${scene}_${when/:/_}_$sched
 rep=/tmp/rep_$name
@@ -30,8 +40,8 @@ mkdir -p "${OUT:=out/ncu_lines}"
 ncu -i $rep.ncu-rep --page source --csv --print-source sass 2>&1 | gzip > $OUT/sass_$name.csv.gz
 d=$(mktemp -d); (cd $d && cuobjdump -xelf all "$bin" >/dev/null 2>&1)
 for f in $d/*.cubin; do
-  nvdisasm -g "$f" 2>/dev/null | awk -v k="$kernel" '
-    /^[ \t]*\.section/ { insec = index($0, ".text.") && index($0, k); if (insec) print "#SECTION", $2 }
+  nvdisasm -g "$f" 2>/dev/null | awk -v k="$kernel" -v w="$world" '
+    /^[ \t]*\.section/ { insec = index($0, ".text.") && index($0, k) && index($0, w); if (insec) print "#SECTION", $2 }
     insec && /\/\/## File/ { loc = $0; sub(/^.*\/\/## File "/, "", loc); sub(/".*line /, ":", loc); sub(/[ ,].*$/, "", loc) }
     insec && match($0, /\/\*[0-9a-f]+\*\//) { print substr($0, RSTART + 2, RLENGTH - 4), loc }'
 done | gzip > $OUT/lines_$name.txt.gz

@@ -338,6 +338,30 @@ TEST(BoxBound, BuiltinBoundsAreConservative) {
                           30.0, "aligned-spheres");
 }
 
+// random-spheres' box bound as nested loops over the cells the box and its margin overlap: the
+// reference for the bound's walk over them (world/spheres.h: from part on by steps of parts).
+bool spheresBoundOverEveryCell(Vec3d lo, Vec3d hi, float voxelSize, uint32_t seed) {
+  double margin = EMPTY_MARGIN_VOXELS * static_cast<double>(voxelSize);
+  if (margin > SPHERE_CELL) return false;
+  margin += SPHERE_SLACK;
+  auto cellOf = [](double a) { return static_cast<int>(std::floor(a / SPHERE_CELL)); };
+  Vec3i c0{cellOf(lo.x - margin), cellOf(lo.y - margin), cellOf(lo.z - margin)};
+  Vec3i c1{cellOf(hi.x + margin), cellOf(hi.y + margin), cellOf(hi.z + margin)};
+  if ((c1.x - c0.x + 1) * (c1.y - c0.y + 1) * (c1.z - c0.z + 1) > SPHERE_BOX_CELLS) return false;
+  auto gap = [](double c, double a, double b) { return c < a ? a - c : c > b ? c - b : 0.0; };
+  for (int z = c0.z; z <= c1.z; ++z)
+    for (int y = c0.y; y <= c1.y; ++y)
+      for (int x = c0.x; x <= c1.x; ++x) {
+        Sphere s = randomSphereOf({x, y, z}, seed);
+        if (!s.exists) continue;
+        double dx = gap(x * SPHERE_CELL + s.centre.x, lo.x, hi.x);
+        double dy = gap(y * SPHERE_CELL + s.centre.y, lo.y, hi.y);
+        double dz = gap(z * SPHERE_CELL + s.centre.z, lo.z, hi.z);
+        if (dx * dx + dy * dy + dz * dz < (s.radius + margin) * (s.radius + margin)) return false;
+      }
+  return true;
+}
+
 // A group tests a box bound in parts (cache/produce.h: growEmptyBoxes, brickBoundedEmpty): every
 // part clear must mean exactly what the whole bound says, whatever the number of parts, for
 // random-spheres' split bound and for a bound in one part (perlin's: part 0 is the whole).
@@ -356,7 +380,10 @@ TEST(BoxBound, PartsGiveTheWholeBoundsAnswer) {
     Vec3d hi{lo.x + s, lo.y + s * unit(rng), lo.z + s};
     bool whole = world.emptyBox(lo, hi, voxelSize);
     (whole ? cleared : refused) += 1;
-    for (int parts : {1, 2, 5, 16}) {
+    if (&world == &spheres) {
+      ASSERT_EQ(whole, spheresBoundOverEveryCell(lo, hi, voxelSize, spheres.seed)) << "box " << i;
+    }
+    for (int parts : {1, 2, 3, 5, 7, 16, 28}) {
       bool all = true;
       for (int part = 0; part < parts; ++part)
         all = emptyBoxPartOf(world, lo, hi, voxelSize, part, parts) && all;
