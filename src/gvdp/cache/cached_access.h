@@ -10,6 +10,7 @@
 #pragma once
 
 #include "gvdp/base/atomics.h"
+#include "gvdp/base/bits.h"
 #include "gvdp/base/clock.h"
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/render/brick_pool.h"
@@ -48,7 +49,7 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples
   coarser = __reduce_add_sync(mask, coarser);
   unsigned lane;
   asm("mov.u32 %0, %%laneid;" : "=r"(lane));
-  if (lane != static_cast<unsigned>(__ffs(static_cast<int>(mask)) - 1)) return;
+  if (lane != static_cast<unsigned>(lowestBit(mask))) return;
 #endif
   atomicAdd64(&c[MARCH_SAMPLES], samples);
   atomicAdd64(&c[MARCH_LOOKUPS], lookups);

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include "gvdp/base/bits.h"
+
 namespace gvdp::detail {
 
 // Every lane of the warp must call it.
@@ -11,7 +13,7 @@ __device__ inline void appendStopped(bool stopped, uint32_t pixel, uint32_t* nex
                                      uint32_t* count) {
   unsigned mask = __ballot_sync(0xffffffffu, stopped);
   if (mask == 0) return;
-  int lane = threadIdx.x & 31, leader = __ffs(mask) - 1;
+  int lane = threadIdx.x & 31, leader = lowestBit(mask);
   uint32_t base = 0;
   if (lane == leader) base = atomicAdd(count, static_cast<uint32_t>(__popc(mask)));
   base = __shfl_sync(0xffffffffu, base, leader);

@@ -4,6 +4,7 @@
 // resolve that counts unfinished pixels.
 #pragma once
 
+#include "gvdp/base/bits.h"
 #include "gvdp/cache/cached_access.h"
 #include "gvdp/cache/produce.h"
 #include "gvdp/render/frame.h"
@@ -76,7 +77,7 @@ struct FinishedRays {
 GVDP_HD GVDP_INLINE void countFinished(uint32_t* count, bool finished) {
 #if GVDP_IS_GPU_CODE
   unsigned mask = __ballot_sync(__activemask(), finished);
-  if (mask && (threadIdx.x & 31u) == static_cast<unsigned>(__ffs(static_cast<int>(mask)) - 1))
+  if (mask && (threadIdx.x & 31u) == static_cast<unsigned>(lowestBit(mask)))
     atomicAdd(count, static_cast<uint32_t>(__popc(mask)));
 #else
   if (finished) atomicAdd32(count, 1u);

@@ -8,6 +8,7 @@
 // pt_kernels.cu.
 #pragma once
 
+#include "gvdp/base/bits.h"
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/cache/produce.h"
 #include "gvdp/profile/timeline_device.cuh"
@@ -79,9 +80,9 @@ struct ParkWarp {
     uint32_t id = task < 0 ? LIST_END : static_cast<uint32_t>(task);
     unsigned group = __match_any_sync(__activemask(), id);
     if (task < 0) return false;  // published (or MISSING again): march on
-    int lane = static_cast<int>(threadIdx.x & 31), leader = __ffs(static_cast<int>(group)) - 1;
+    int lane = static_cast<int>(threadIdx.x & 31), leader = lowestBit(group);
     unsigned above = group & ~((2u << lane) - 1u);
-    uint32_t next = __shfl_sync(group, pixel, above ? __ffs(static_cast<int>(above)) - 1 : lane);
+    uint32_t next = __shfl_sync(group, pixel, above ? lowestBit(above) : lane);
     uint32_t last = __shfl_sync(group, pixel, 31 - __clz(static_cast<int>(group)));
     if (above) storeRelaxed32(&ctx.waitNext[pixel], next);
     __threadfence();
@@ -108,7 +109,7 @@ struct ParkWarp {
   __device__ bool leads(const uint32_t* stopEntry) const {
     unsigned group =
         __match_any_sync(__activemask(), reinterpret_cast<unsigned long long>(stopEntry));
-    return static_cast<int>(threadIdx.x & 31) == __ffs(static_cast<int>(group)) - 1;
+    return static_cast<int>(threadIdx.x & 31) == lowestBit(group);
   }
 };
 
@@ -309,7 +310,7 @@ __device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
     own = loadRelaxed32(&pp.open[home]) >> first % 32 & ((1u << PT_WORKER_WARPS) - 1u);
   }
   own = __shfl_sync(FULL_MASK, own, 0);
-  if (own) return first + static_cast<uint32_t>(__ffs(static_cast<int>(own)) - 1);
+  if (own) return first + static_cast<uint32_t>(lowestBit(own));
   if (__shfl_sync(FULL_MASK, count, 0) == 0) return NO_PRODUCTION;
   for (uint32_t base = 0; base < pp.openWords; base += 32) {
     uint32_t k = base + static_cast<uint32_t>(lane), w = home + k;
@@ -317,9 +318,9 @@ __device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
     uint32_t bits = k < pp.openWords ? loadRelaxed32(&pp.open[w]) : 0u;
     unsigned any = __ballot_sync(FULL_MASK, bits != 0u);
     if (any) {
-      int src = __ffs(static_cast<int>(any)) - 1;
+      int src = lowestBit(any);
       uint32_t word = __shfl_sync(FULL_MASK, w, src), b = __shfl_sync(FULL_MASK, bits, src);
-      return word * 32 + static_cast<uint32_t>(__ffs(static_cast<int>(b)) - 1);
+      return word * 32 + static_cast<uint32_t>(lowestBit(b));
     }
   }
   return NO_PRODUCTION;
