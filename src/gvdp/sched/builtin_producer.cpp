@@ -2,7 +2,17 @@
 
 #include "gvdp/sched/producer_kernels_of.h"
 
+#if GVDP_PRODUCER_CUDA
+#include "gvdp/sched/builtin_pt_workers.h"
+#endif
+
 namespace gvdp::detail {
+
+#if GVDP_PRODUCER_CUDA
+#define GVDP_ELSEWHERE(W) GVDP_PT_WORKERS_OF(extern template, W)
+GVDP_BUILTIN_WORLDS(GVDP_ELSEWHERE)
+#undef GVDP_ELSEWHERE
+#endif
 
 // The kernels of the scene's own world type. Those of BuiltinScene switched over the five worlds
 // at every call: pt's worker was 31 272 SASS instructions against 14 784-20 312 for one world

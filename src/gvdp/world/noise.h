@@ -36,8 +36,17 @@ GVDP_HD GVDP_INLINE Vec3f latticeGradient(int x, int y, int z, uint32_t seed) {
           v == 2 ? sv : 0.0f};
 }
 
+// gradientNoise's linkage: inlined at every call, except in the device code of a translation unit
+// that defines GVDP_NOISE_OUT_OF_LINE (pt's workers of the built-in worlds,
+// sched/builtin_pt_workers.cpp), where one copy of its own serves all of its call sites.
+#if defined(__CUDA_ARCH__) && defined(GVDP_NOISE_OUT_OF_LINE)
+#define GVDP_NOISE_LINKAGE static __noinline__
+#else
+#define GVDP_NOISE_LINKAGE GVDP_INLINE
+#endif
+
 // Noise at p (lattice units, double) with its gradient. Value roughly in [-1, 1].
-GVDP_HD GVDP_INLINE NoiseSample gradientNoise(Vec3d p, uint32_t seed) {
+GVDP_HD GVDP_NOISE_LINKAGE NoiseSample gradientNoise(Vec3d p, uint32_t seed) {
   double fx = floor(p.x), fy = floor(p.y), fz = floor(p.z);
   // Lattice coordinates wrap modulo 2^32 through int64: the hash only needs them distinct locally.
   int ix = static_cast<int>(static_cast<long long>(fx));
