@@ -3,14 +3,14 @@
 #include "gvdp/sched/producer_kernels_of.h"
 
 #if GVDP_PRODUCER_CUDA
-#include "gvdp/sched/builtin_pt_workers.h"
+#include "gvdp/sched/pt_noise_workers.h"
 #endif
 
 namespace gvdp::detail {
 
 #if GVDP_PRODUCER_CUDA
 #define GVDP_ELSEWHERE(W) GVDP_PT_WORKERS_OF(extern template, W)
-GVDP_BUILTIN_WORLDS(GVDP_ELSEWHERE)
+GVDP_NOISE_WORLDS(GVDP_ELSEWHERE)
 #undef GVDP_ELSEWHERE
 #endif
 

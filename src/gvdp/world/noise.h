@@ -37,8 +37,8 @@ GVDP_HD GVDP_INLINE Vec3f latticeGradient(int x, int y, int z, uint32_t seed) {
 }
 
 // gradientNoise's linkage: inlined at every call, except in the device code of a translation unit
-// that defines GVDP_NOISE_OUT_OF_LINE (pt's workers of the built-in worlds,
-// sched/builtin_pt_workers.cpp), where one copy of its own serves all of its call sites.
+// that defines GVDP_NOISE_OUT_OF_LINE (pt's workers of perlin and fbm,
+// sched/pt_noise_workers.cpp), where one copy of its own serves all of its call sites.
 #if defined(__CUDA_ARCH__) && defined(GVDP_NOISE_OUT_OF_LINE)
 #define GVDP_NOISE_LINKAGE static __noinline__
 #else
