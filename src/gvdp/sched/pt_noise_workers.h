@@ -2,7 +2,7 @@
 // translation unit of their own (pt_noise_workers.cpp, CUDA builds): at 80 registers a thread, as
 // their launch bounds ask, with gradient noise out of line (world/noise.h: GVDP_NOISE_OUT_OF_LINE),
 // one copy for the brick's bound, the growth's bound and the samples instead of three inlined
-// ones (perlin's worker: 17 191 -> 15 048 SASS instructions, sm_90). ptxas refuses a call from the
+// ones (perlin's worker: 17 560 -> 15 048 SASS instructions, sm_90). ptxas refuses a call from the
 // 80-register worker to a function compiled with more registers, so that unit is built with
 // -maxrregcount=80; sp's, dp's and graph's kernels of the same worlds (112-128 registers) stay in
 // builtin_producer.cpp, which declares these instantiations extern. On an H100 (25 pt cells, 2

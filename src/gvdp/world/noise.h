@@ -92,5 +92,6 @@ GVDP_HD GVDP_NOISE_LINKAGE NoiseSample gradientNoise(Vec3d p, uint32_t seed) {
   s.grad = g;
   return s;
 }
+#undef GVDP_NOISE_LINKAGE
 
 }  // namespace gvdp::detail
