@@ -475,13 +475,14 @@ constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next
 // PT_BATCH items of the screen (tile_order.h), until no ray or task of the frame is left; with none
-// of those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. Both
-// kinds of rays are run at one call site (render), so that the march is inlined once into the GPU
-// kernel, and so are the samples of a production (help): a GPU warp's produce opens its
-// production, whose samples it computes in the next round as any helper does (a second call site
-// was a second copy of the producer in the worker: 54 KB of forest's SASS, 17 KB of
-// random-spheres'; once: 25 pt cells FPS x1.017, 1% lows x1.029, H100, BENCHMARKS.md session 27).
-// The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread, whose
+// of those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. A GPU
+// warp of a helper SM (pt_worker.cuh: PT_HELPER_SMS) helps an open production before it takes
+// rays or items. Both kinds of rays are run at one call site (render), so that the march is
+// inlined once into the GPU kernel, and so are the samples of a production (help): a GPU warp's
+// produce opens its production, whose samples it computes in the next round as any helper does
+// (a second call site was a second copy of the producer in the worker: 54 KB of forest's SASS,
+// 17 KB of random-spheres'; once: 25 pt cells FPS x1.017, 1% lows x1.029, H100, BENCHMARKS.md
+// session 27). The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread, whose
 // produce does the whole production; pt_worker.cuh: a warp):
 //   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
@@ -492,6 +493,7 @@ constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
 //   Batch fresh(uint32_t first)                             items first .. first + PT_BATCH - 1
 //   void render(const Batch&)                               runs a batch's rays
 //   uint32_t findProduction()                               one to help (NO_PRODUCTION: none)
+//   bool helpsFirst()                                       helps before it renders
 //   void help(uint32_t owner)                               its samples; the end of its own
 //   uint32_t claimPrefetch()                                first, prefetchItems when none
 //   void prefetch(uint32_t first)                           prefetch rays first .. + PT_BATCH - 1
@@ -507,6 +509,9 @@ GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
         w.produce(position);
         continue;
       }
+      if (w.helpsFirst()) production = w.findProduction();
+    }
+    if (production == NO_PRODUCTION) {
       if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
         batch = w.queued(position, n);
       } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {

@@ -132,6 +132,7 @@ class PtCpu final : public SpFrameCpu {
     // A production is one thread's: produce does all of it.
     static uint32_t producing() { return NO_PRODUCTION; }
     static uint32_t findProduction() { return NO_PRODUCTION; }
+    static bool helpsFirst() { return false; }
     static void help(uint32_t) {}
     uint32_t claimPrefetch() const { return claimPrefetchItems(ctx); }
     void prefetch(uint32_t first) const {

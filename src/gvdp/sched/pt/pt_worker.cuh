@@ -24,6 +24,15 @@ namespace gvdp::detail {
 constexpr int PT_BLOCK = 256, PT_WARPS = PT_BLOCK / 32, PT_MIN_BLOCKS = 3;
 static_assert(PT_WARPS == static_cast<int>(PT_WORKER_WARPS));
 constexpr unsigned FULL_MASK = 0xffffffffu;
+// Helper SMs: one SM in PT_HELPER_SMS (smId() % PT_HELPER_SMS == 0), whose warps help an open
+// production before they take relaunched rays or screen items; the other SMs' warps help only with
+// nothing else to take. A production then gets helpers while the screen is still being rendered,
+// and its rays wait for 32 chunks computed by many warps rather than by its owner alone. H100,
+// 25 pt cells, two calls of 2 rounds: FPS x1.053 / x1.060, 1% lows x1.086 / x1.080 (perlin's
+// walkthrough frame 12: 4.2 -> 3.6 ms); one SM in 2: x1.004, in 3: x1.044, in 6: x1.062, in 8:
+// x1.060; a quarter of every SM's warps instead of a quarter of the SMs: x0.997 (BENCHMARKS.md,
+// session 33).
+constexpr uint32_t PT_HELPER_SMS = 4;
 
 // Lane 0's open timeline span, kept in the warp's shared memory: in registers (with a copy of the
 // timeline's view) it was live across the march (80 registers: spill stores 784 -> 664 bytes).
@@ -143,10 +152,11 @@ __device__ inline void renderLanes(const PtContext& ctx, const BrickPool& pool, 
 
 // Productions in flight (PtProductions, in device memory), whose chunks (one sample per lane)
 // any warp of the grid may compute: the owner warp computes chunks until none is left, then waits
-// for its helpers. Only warps with nothing else to take help (helping before rendering halved
-// production throughput, measured), their own block's productions first; in the frame's tail, a
-// chain of dependent productions, up to 32 warps of any SMs compute one brick at once (a block's
-// 8 warps, 4 samples a lane, before: mesh bricks of 5-20 ms each made a 54 ms tail, measured).
+// for its helpers. Only the warps of helper SMs (PT_HELPER_SMS) and warps with nothing else to
+// take help (every warp helping before it rendered halved production throughput, measured), their
+// own block's productions first; in the frame's tail, a chain of dependent productions, up to 32
+// warps of any SMs compute one brick at once (a block's 8 warps, 4 samples a lane, before: mesh
+// bricks of 5-20 ms each made a 54 ms tail, measured).
 //
 // Warps of different blocks hand these words to each other, so every access is a strong one at
 // device scope: writes are atomic exchanges, read-modify-writes or relaxed stores, reads relaxed
@@ -327,8 +337,9 @@ __device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
 }
 
 // One worker (a warp) of pt's loop (pt_body.h): every lane runs every step, lane 0 claims and
-// shares what it claimed. With nothing to take, the warp helps a production (its block's first:
-// the tail of the frame), or marches prefetch rays, or sleeps with an exponential backoff.
+// shares what it claimed. With nothing to take, or on a helper SM before it renders, the warp
+// helps a production (its block's first); with nothing to take, else it marches prefetch rays, or
+// sleeps with an exponential backoff.
 template <class P>
 struct WarpWorker {
   const PtContext& ctx;
@@ -398,6 +409,7 @@ struct WarpWorker {
     worked();
   }
   __device__ uint32_t findProduction() const { return openProduction(ctx.productions, lane); }
+  __device__ static bool helpsFirst() { return smId() % PT_HELPER_SMS == 0; }
   // The samples of `owner`'s production; then, the warp's own, its end.
   __device__ void help(uint32_t owner) {
     begin(TaskKind::Produce);
