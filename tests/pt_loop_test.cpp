@@ -1,0 +1,150 @@
+// pt's worker loop (sched/pt/pt_body.h: ptWorkerLoop) over a scripted worker: the order in which a
+// worker takes its work, a helper SM's warp (pt_worker.cuh: PT_HELPER_SMS) included.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "gvdp/sched/pt/pt_body.h"
+
+namespace gvdp::detail {
+namespace {
+
+constexpr uint32_t OWNER = 7;  // the open production's owner
+
+// What is there to take, and the steps the loop took, one round of it (liveWork() reads 0 after).
+struct ScriptedWorker {
+  explicit ScriptedWorker(const PtContext& c) : ctx(c) {}
+  const PtContext& ctx;
+  bool helper = false;
+  uint32_t tasks = 0, rays = 0, items = 0;
+  uint32_t open = NO_PRODUCTION;
+  uint32_t prefetchItems = 0;
+  int rounds = 1;
+  std::vector<std::string> steps;
+
+  struct Batch {
+    bool relaunched = false;
+  };
+  uint32_t liveWork() { return rounds-- > 0 ? 1u : 0u; }
+  uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) {
+    *position = 0;
+    uint32_t& left = &r == &ctx.tasks ? tasks : rays;
+    EXPECT_TRUE(&r == &ctx.tasks || &r == &ctx.rays);
+    uint32_t got = std::min(left, n);
+    left -= got;
+    return got;
+  }
+  static uint32_t producing() { return NO_PRODUCTION; }
+  void produce(uint32_t) { steps.push_back("produce"); }
+  Batch queued(uint32_t, uint32_t) {
+    steps.push_back("rays");
+    return {true};
+  }
+  uint32_t claimFresh() { return items > 0 ? (--items, 0u) : ctx.itemCount; }
+  Batch fresh(uint32_t) {
+    steps.push_back("items");
+    return {};
+  }
+  void render(const Batch&) { steps.push_back("render"); }
+  uint32_t findProduction() const { return open; }
+  bool helpsFirst() const { return helper; }
+  void help(uint32_t owner) { steps.push_back("help " + std::to_string(owner)); }
+  uint32_t claimPrefetch() { return prefetchItems > 0 ? (--prefetchItems, 0u) : 1u; }
+  void prefetch(uint32_t) { steps.push_back("prefetch"); }
+  void idle() { steps.push_back("idle"); }
+  void finish() { steps.push_back("finish"); }
+};
+
+using Steps = std::vector<std::string>;
+
+PtContext loopContext() {
+  PtContext ctx{};
+  ctx.itemCount = 64;
+  ctx.prefetchItems = 1;
+  return ctx;
+}
+
+// The steps of a worker for which `set` scripts what there is to take.
+template <class Set>
+Steps run(Set set) {
+  PtContext ctx = loopContext();
+  ScriptedWorker w(ctx);
+  set(w);
+  ptWorkerLoop(ctx, w);
+  return w.steps;
+}
+
+TEST(PtWorkerLoop, TakesAProductionTaskBeforeAnythingElse) {
+  for (bool helper : {false, true})
+    EXPECT_EQ(run([&](ScriptedWorker& w) {
+                w.helper = helper;
+                w.tasks = 1;
+                w.rays = 32;
+                w.items = 1;
+                w.open = OWNER;
+              }),
+              (Steps{"produce", "finish"}))
+        << "helper " << helper;
+}
+
+TEST(PtWorkerLoop, RendersBeforeItHelpsUnlessItIsAHelper) {
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              w.rays = 32;
+              w.open = OWNER;
+            }),
+            (Steps{"rays", "render", "finish"}));
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              w.items = 1;
+              w.open = OWNER;
+            }),
+            (Steps{"items", "render", "finish"}));
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              w.helper = true;
+              w.rays = 32;
+              w.items = 1;
+              w.open = OWNER;
+            }),
+            (Steps{"help 7", "finish"}));
+}
+
+TEST(PtWorkerLoop, AHelperWithNoOpenProductionRenders) {
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              w.helper = true;
+              w.rays = 32;
+            }),
+            (Steps{"rays", "render", "finish"}));
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              w.helper = true;
+              w.items = 1;
+            }),
+            (Steps{"items", "render", "finish"}));
+}
+
+TEST(PtWorkerLoop, WithNothingToTakeItHelpsThenPrefetchesThenIdles) {
+  for (bool helper : {false, true}) {
+    EXPECT_EQ(run([&](ScriptedWorker& w) {
+                w.helper = helper;
+                w.open = OWNER;
+              }),
+              (Steps{"help 7", "finish"}));
+    EXPECT_EQ(run([&](ScriptedWorker& w) {
+                w.helper = helper;
+                w.prefetchItems = 1;
+              }),
+              (Steps{"prefetch", "finish"}));
+    EXPECT_EQ(run([&](ScriptedWorker& w) { w.helper = helper; }), (Steps{"idle", "finish"}));
+  }
+}
+
+TEST(PtWorkerLoop, RunsUntilNoWorkIsLive) {
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              w.rays = 64;
+              w.rounds = 3;
+            }),
+            (Steps{"rays", "render", "rays", "render", "idle", "finish"}));
+}
+
+}  // namespace
+}  // namespace gvdp::detail
