@@ -28,7 +28,7 @@ constexpr unsigned FULL_MASK = 0xffffffffu;
 // production before they take relaunched rays or screen items; the other SMs' warps help only with
 // nothing else to take. A production then gets helpers while the screen is still being rendered,
 // and its rays wait for 32 chunks computed by many warps rather than by its owner alone. H100,
-// 25 pt cells, two calls of 2 rounds: FPS x1.053 / x1.060, 1% lows x1.086 / x1.080 (perlin's
+// 25 pt cells, three calls of 2 rounds: FPS x1.053-1.060, 1% lows x1.066-1.086 (perlin's
 // walkthrough frame 12: 4.2 -> 3.6 ms); one SM in 2: x1.004, in 3: x1.044, in 6: x1.062, in 8:
 // x1.060; a quarter of every SM's warps instead of a quarter of the SMs: x0.997 (BENCHMARKS.md,
 // session 33).
