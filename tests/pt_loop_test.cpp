@@ -51,7 +51,7 @@ struct ScriptedWorker {
   uint32_t findProduction() const { return open; }
   bool helpsFirst() const { return helper; }
   void help(uint32_t owner) { steps.push_back("help " + std::to_string(owner)); }
-  uint32_t claimPrefetch() { return prefetchItems > 0 ? (--prefetchItems, 0u) : 1u; }
+  uint32_t claimPrefetch() { return prefetchItems > 0 ? (--prefetchItems, 0u) : ctx.prefetchItems; }
   void prefetch(uint32_t) { steps.push_back("prefetch"); }
   void idle() { steps.push_back("idle"); }
   void finish() { steps.push_back("finish"); }
