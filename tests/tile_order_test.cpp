@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "gvdp/sched/tile_order.h"
@@ -155,6 +156,33 @@ TEST(TileOrderCuda, SortsTheLastFramesBlocksMostCostlyFirst) {
   EXPECT_TRUE(std::all_of(fresh.begin(), fresh.end(), [](uint32_t c) { return c == 0; }));
   // Another size: row-major again.
   EXPECT_EQ(orders.next(frameOfSize(200, 300), stream.get()).order, nullptr);
+}
+
+// The order of the bench's frame and of larger ones: each of the sort's 32 warps takes runs of
+// more than 32 blocks, and most keys are shared by many blocks.
+TEST(TileOrderCuda, OrdersLargeFramesAsAStableSortDoes) {
+  GVDP_REQUIRE_GPU();
+  OwnedGpuStream stream(createGpuStream());
+  for (auto [w, h] : {std::pair{1500, 1000}, std::pair{3000, 2000}, std::pair{7680, 4320}}) {
+    FrameSetup f = frameOfSize(w, h);
+    const size_t n = static_cast<size_t>(orderBlockCount(f));
+    TileOrderCuda orders;
+    TileOrder first = orders.next(f, stream.get());
+    std::vector<uint32_t> cost(n);
+    for (size_t b = 0; b < n; ++b) cost[b] = b % 11 == 0 ? 0u : 1u << (b * 2654435761u % 29u);
+    writeDevice(first.cost, cost.data(), n * sizeof(uint32_t), stream.get());
+    TileOrder second = orders.next(f, stream.get());
+    ASSERT_NE(second.order, nullptr);
+    std::vector<uint32_t> order(n), expected(n);
+    readDevice(order.data(), second.order, n * sizeof(uint32_t), stream.get());
+    std::vector<uint32_t> key(n);
+    for (size_t b = 0; b < n; ++b)
+      key[b] = blockCostKey(neighbourhoodCost(cost.data(), f, static_cast<int>(b)));
+    std::iota(expected.begin(), expected.end(), 0u);
+    std::stable_sort(expected.begin(), expected.end(),
+                     [&](uint32_t a, uint32_t b) { return key[a] > key[b]; });
+    EXPECT_EQ(order, expected) << w << "x" << h << ", " << n << " blocks";
+  }
 }
 #endif
 

@@ -10,11 +10,13 @@
 //                                               last-used frame, oldest first (lru_order.h, from
 //                                               the order it built before); the free list's
 //                                               length into counters[COUNTER_FREE_COUNT]
-//                                               (lruFreeListLength), on the backend
+//                                               (lruFreeListLength) and 0 into
+//                                               counters[COUNTER_FREE_NEXT], on the backend
 //   countUnsampled(timestamps, n, frame, counters)  the slots' marks at the end of `frame`
 //                                               counted and cleared (takeUnsampled, countSlotMark)
-//   setDeadline(uint64_t* at, uint64_t ns)      *at = the backend's clockNanoseconds() + ns,
-//                                               ordered before the frame's rays
+//   startFrame(view, settle, deadlineNs, timeline)  settleFreshSlot(view, i) for i < settle and
+//                                               startFrameCounter(view.counters, i, deadlineNs)
+//                                               for every counter, in one pass (cache_ops.h)
 //   unmapSlots(view, n, timeline)               unmapFreeSlot(view, i) for i < n (cache_ops.h)
 //   settleFresh(view, n, timeline)              settleFreshSlot(view, i) for i < n (cache_ops.h)
 //   lruBytes(), LRU_NAME                        what the LRU order holds, for the memory report
@@ -62,11 +64,9 @@ class BrickCache {
   // the request queue, refill the free slot list.
   void beginFrame(const FrameSetup& frame) {
     timeline_ = frame.timeline;  // the last frame's may be gone
-    settleFresh();
-    ops_.zero(counters_.data(), COUNTER_COUNT);
-    if (budgeted())
-      ops_.setDeadline(reinterpret_cast<uint64_t*>(counters_.data() + COUNTER_DEADLINE),
-                       static_cast<uint64_t>(budgetNs_));
+    // The last frame's fresh marks settled, the counters zeroed and the deadline set: one pass.
+    ops_.startFrame(view(), freeSlots_ ? poolBricks_ : 0u, budgeted() ? budgetNs_ : int64_t{-1},
+                    timeline_);
     ClipmapTracker::Update u = tracker_.next(frame);
     clipmap_ = u.clipmap;
     degraded_ = false;
@@ -159,7 +159,6 @@ class BrickCache {
   void takeFreeList() {
     freeSlots_ =
         ops_.buildLruOrder(timestamps_.data(), poolBricks_, frame_, counters_.data(), timeline_);
-    ops_.zero(counters_.data() + COUNTER_FREE_NEXT, 1);
     ops_.unmapSlots(view(), poolBricks_, timeline_);
     ++refills_;
   }

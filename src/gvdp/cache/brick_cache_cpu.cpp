@@ -50,6 +50,7 @@ const uint32_t* HostCacheOps::buildLruOrder(const uint32_t* timestamps, uint32_t
     if (item.kept != MAX_SLOTS) next_[at[LRU_KEPT]++] = item.kept;
   }
   counters[COUNTER_FREE_COUNT] = lruFreeListLength(n, size, builtAt_, frame);
+  counters[COUNTER_FREE_NEXT] = 0;  // the list taken from its head
   order_.swap(next_);
   builtAt_ = frame;
   return order_.data();
@@ -64,8 +65,10 @@ void HostCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineVie
   for (uint32_t i = 0; i < n; ++i) settleFreshSlot(v, i);
 }
 
-void HostCacheOps::setDeadline(uint64_t* at, uint64_t ns) {
-  *at = clockNanoseconds() + ns;
+void HostCacheOps::startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
+                              const TimelineView&) {
+  for (uint32_t i = 0; i < settle; ++i) settleFreshSlot(v, i);
+  for (uint32_t i = 0; i < COUNTER_COUNT; ++i) startFrameCounter(v.counters, i, deadlineNs);
 }
 
 void HostCacheOps::unmapSlots(const CacheView& v, uint32_t n, const TimelineView&) {

@@ -29,7 +29,8 @@ class HostCacheOps {
                                 uint32_t* counters, const TimelineView&);
   static void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters);
   static void settleFresh(const CacheView& v, uint32_t n, const TimelineView&);
-  static void setDeadline(uint64_t* at, uint64_t ns);
+  static void startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
+                         const TimelineView&);
   static void unmapSlots(const CacheView& v, uint32_t n, const TimelineView&);
   size_t lruBytes() const { return (order_.size() + next_.size()) * sizeof(uint32_t); }
 

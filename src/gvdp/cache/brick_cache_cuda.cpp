@@ -42,23 +42,20 @@ const uint32_t* CudaCacheOps::buildLruOrder(const uint32_t* timestamps, uint32_t
 
 void CudaCacheOps::unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const {
   launchUnmapSlots(v, n, t, stream_);
-  GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
 void CudaCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame,
                                   uint32_t* counters) const {
   launchCountUnsampled(timestamps, n, frame, counters, TimelineView{}, stream_);
-  GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
 void CudaCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const {
   launchSettleFresh(v, n, t, stream_);
-  GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
-void CudaCacheOps::setDeadline(uint64_t* at, uint64_t ns) const {
-  launchSetDeadline(at, ns, stream_);
-  GVDP_CUDA_CHECK(cudaGetLastError());
+void CudaCacheOps::startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
+                              const TimelineView& t) const {
+  launchStartFrame(v, settle, deadlineNs, t, stream_);
 }
 
 size_t CudaCacheOps::lruBytes() const {

@@ -1,9 +1,10 @@
 // CUDA kernels of the cache maintenance: clipmap slab reset, the LRU order (lru_order.h),
-// unmapping, the frame's deadline, the fresh marks' settling.
+// unmapping, the frame's start (its counters and deadline), the fresh marks' settling.
 #include <cub/block/block_reduce.cuh>
 #include <cub/block/block_scan.cuh>
 
 #include "gvdp/base/clock.h"
+#include "gvdp/base/dependent_launch.cuh"
 #include "gvdp/cache/cache_kernels.h"
 #include "gvdp/cache/lru_order.h"
 #include "gvdp/profile/parallel_for.cuh"
@@ -52,6 +53,8 @@ struct LruItems {
 __global__ void __launch_bounds__(LRU_THREADS)
     lruTileSizesKernel(const uint32_t* timestamps, const uint32_t* order, uint32_t n,
                        uint32_t builtAt, uint64_t* tileSizes, TimelineView timeline) {
+  awaitPriorGrids();
+  releaseDependentGrids();
   BlockTimer timer(timeline, TaskKind::Cache);
   using Reduce = cub::BlockReduce<uint64_t, LRU_THREADS>;
   __shared__ typename Reduce::TempStorage temp;
@@ -82,6 +85,8 @@ __global__ void __launch_bounds__(LRU_THREADS)
     lruScatterKernel(const uint32_t* timestamps, const uint32_t* order, uint32_t* next, uint32_t n,
                      uint32_t builtAt, uint32_t frame, const uint64_t* tileSizes, uint32_t tiles,
                      uint32_t* counters, TimelineView timeline) {
+  awaitPriorGrids();
+  releaseDependentGrids();
   BlockTimer timer(timeline, TaskKind::Cache);
   using Reduce = cub::BlockReduce<LruSums, LRU_THREADS>;
   using Scan = cub::BlockScan<uint64_t, LRU_THREADS>;
@@ -105,8 +110,10 @@ __global__ void __launch_bounds__(LRU_THREADS)
       start[p] = at + sums.before[p];
       at += sums.all[p];
     }
-    if (blockIdx.x == 0)
+    if (blockIdx.x == 0) {
       counters[COUNTER_FREE_COUNT] = lruFreeListLength(n, sums.all, builtAt, frame);
+      counters[COUNTER_FREE_NEXT] = 0;  // the list taken from its head
+    }
   }
   __syncthreads();
   LruItems items(timestamps, order, n, builtAt);
@@ -132,11 +139,10 @@ void launchLruOrder(const uint32_t* timestamps, const uint32_t* order, uint32_t*
                     uint32_t builtAt, uint32_t frame, uint64_t* tileSizes, uint32_t* counters,
                     const TimelineView& timeline, cudaStream_t stream) {
   uint32_t tiles = lruTileCount(n);
-  lruTileSizesKernel<<<tiles, LRU_THREADS, 0, stream>>>(timestamps, order, n, builtAt, tileSizes,
-                                                        timeline);
-  lruScatterKernel<<<tiles, LRU_THREADS, 0, stream>>>(timestamps, order, next, n, builtAt, frame,
-                                                      tileSizes, tiles, counters, timeline);
-  GVDP_CUDA_CHECK(cudaGetLastError());
+  launchDependent(lruTileSizesKernel, tiles, LRU_THREADS, stream, timestamps, order, n, builtAt,
+                  tileSizes, timeline);
+  launchDependent(lruScatterKernel, tiles, LRU_THREADS, stream, timestamps, order, next, n, builtAt,
+                  frame, tileSizes, tiles, counters, timeline);
 }
 
 void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters,
@@ -145,11 +151,6 @@ void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint
                   [=] __device__(uint32_t i) {
                     countSlotMark(counters, takeUnsampled(&timestamps[i], frame));
                   });
-}
-
-void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream) {
-  parallelForCuda("cache: deadline", stream, 1, TimelineView{}, TaskKind::Cache,
-                  [=] __device__(uint32_t) { *at = clockNanoseconds() + ns; });
 }
 
 void launchUnmapSlots(const CacheView& cache, uint32_t n, const TimelineView& timeline,
@@ -162,6 +163,16 @@ void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& t
                        cudaStream_t stream) {
   parallelForCuda("cache: settle fresh entries", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { settleFreshSlot(cache, i); });
+}
+
+void launchStartFrame(const CacheView& cache, uint32_t settle, int64_t deadlineNs,
+                      const TimelineView& timeline, cudaStream_t stream) {
+  uint32_t n = settle > COUNTER_COUNT ? settle : static_cast<uint32_t>(COUNTER_COUNT);
+  parallelForCuda("cache: frame start", stream, n, timeline, TaskKind::Cache,
+                  [=] __device__(uint32_t i) {
+                    if (i < settle) settleFreshSlot(cache, i);
+                    if (i < COUNTER_COUNT) startFrameCounter(cache.counters, i, deadlineNs);
+                  });
 }
 
 }  // namespace gvdp::detail

@@ -14,16 +14,18 @@ namespace gvdp::detail {
 void launchResetSlabs(const CacheView& cache, const SlabJobs& jobs, const TimelineView& timeline,
                       cudaStream_t stream);
 // next = the LRU order of the n slots in `frame`, from `order` built in frame builtAt
-// (lru_order.h); counters[COUNTER_FREE_COUNT] = the free list's length. tileSizes: lruTileCount(n)
-// words.
+// (lru_order.h); counters[COUNTER_FREE_COUNT] = the free list's length,
+// counters[COUNTER_FREE_NEXT] = 0. tileSizes: lruTileCount(n) words.
 void launchLruOrder(const uint32_t* timestamps, const uint32_t* order, uint32_t* next, uint32_t n,
                     uint32_t builtAt, uint32_t frame, uint64_t* tileSizes, uint32_t* counters,
                     const TimelineView& timeline, cudaStream_t stream);
 // The slots' marks at the end of `frame` into `counters` (CacheCounter; takeUnsampled).
 void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters,
                           const TimelineView& timeline, cudaStream_t stream);
-// *at = the device's clockNanoseconds() + ns, when the stream reaches it.
-void launchSetDeadline(uint64_t* at, uint64_t ns, cudaStream_t stream);
+// A frame's start: settleFreshSlot(cache, i) for i < settle and startFrameCounter for every
+// counter (cache_ops.h), one launch.
+void launchStartFrame(const CacheView& cache, uint32_t settle, int64_t deadlineNs,
+                      const TimelineView& timeline, cudaStream_t stream);
 // settleFreshSlot(cache, i) for i < n (cache_ops.h).
 void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& timeline,
                        cudaStream_t stream);

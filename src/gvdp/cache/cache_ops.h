@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gvdp/base/atomics.h"
+#include "gvdp/base/clock.h"
 #include "gvdp/cache/cache_view.h"
 
 namespace gvdp::detail {
@@ -92,6 +93,20 @@ GVDP_HD GVDP_INLINE void settleFreshSlot(const CacheView& c, uint32_t i) {
   if (k.level == NO_LEVEL) return;
   uint32_t* entry = &c.entries[c.clipmap.entryIndex(k.level, k.brick)];
   if (*entry == (slot | ENTRY_FRESH)) *entry = slot;
+}
+
+// Counter i at a frame's start: zero, but for the free list's two, which settling reads and the LRU
+// order sets (buildLruOrder), and a budgeted frame's deadline (deadlineNs >= 0), set to
+// clockNanoseconds() + deadlineNs. Run beside settleFreshSlot, in one pass.
+GVDP_HD GVDP_INLINE void startFrameCounter(uint32_t* counters, uint32_t i, int64_t deadlineNs) {
+  if (i == COUNTER_FREE_NEXT || i == COUNTER_FREE_COUNT) return;
+  if (deadlineNs >= 0 && (i == COUNTER_DEADLINE || i == COUNTER_DEADLINE + 1)) {
+    if (i == COUNTER_DEADLINE)
+      *reinterpret_cast<uint64_t*>(counters + i) =
+          clockNanoseconds() + static_cast<uint64_t>(deadlineNs);
+    return;
+  }
+  counters[i] = 0;
 }
 
 // Queues brick g of `level` for production; the caller won the MISSING -> IN_PRODUCTION CAS on

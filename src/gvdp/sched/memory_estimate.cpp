@@ -71,8 +71,8 @@ void addCudaRayItems(const SchedulerOptions& o, const FrameSetup& f, MemoryRepor
   if (o.kind == SchedulerKind::Dp) m.push_back({"ray_locks", pixels * sizeof(uint32_t)});
   if (o.kind == SchedulerKind::Pt)
     m.push_back({"pt_queues_and_wait_lists", PtLayout{n, PT_CUDA_WORKER_WARPS}.bytes()});
-  if (o.kind == SchedulerKind::Sp || o.kind == SchedulerKind::Pt)  // and CUB's sort's scratch
-    m.push_back({"tile_order", size_t{5} * orderBlockCount(f) * sizeof(uint32_t)});
+  if (o.kind == SchedulerKind::Sp || o.kind == SchedulerKind::Pt)  // 2 costs, keys, order
+    m.push_back({"tile_order", size_t{4} * orderBlockCount(f) * sizeof(uint32_t)});
 }
 
 }  // namespace

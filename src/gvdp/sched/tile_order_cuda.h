@@ -1,6 +1,6 @@
 // The tile order (tile_order.h) on the CUDA backend: the block costs the last frame measured, moved
 // with the camera's turn (reprojectedBlock) and sorted most costly first, for the next frame of the
-// same size (CUB's radix sort, stable: blocks of equal cost stay in row-major order).
+// same size (a stable counting sort in one launch: blocks of equal cost stay in row-major order).
 #pragma once
 
 #include <cuda_runtime_api.h>
@@ -18,13 +18,11 @@ class TileOrderCuda {
   // row-major; and f's costs zeroed for it to measure.
   TileOrder next(const FrameSetup& f, cudaStream_t stream);
   size_t bytes() const {
-    return cost_[0].bytes() + cost_[1].bytes() + keys_.bytes() + sortedKeys_.bytes() +
-           blocks_.bytes() + order_.bytes() + temp_.bytes();
+    return cost_[0].bytes() + cost_[1].bytes() + keys_.bytes() + order_.bytes();
   }
 
  private:
-  DeviceBuffer<uint32_t> cost_[2], keys_, sortedKeys_, blocks_, order_;
-  DeviceBuffer<uint8_t> temp_;
+  DeviceBuffer<uint32_t> cost_[2], keys_, order_;
   std::optional<FrameSetup> last_;  // the frame that measured cost_[1]
 };
 

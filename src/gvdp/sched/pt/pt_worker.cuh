@@ -10,6 +10,7 @@
 
 #include "gvdp/base/bits.h"
 #include "gvdp/base/cuda_util.h"
+#include "gvdp/base/dependent_launch.cuh"
 #include "gvdp/cache/produce.h"
 #include "gvdp/profile/timeline_device.cuh"
 #include "gvdp/render/brick_pool.h"
@@ -463,6 +464,7 @@ template <class P>
 __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
     ptWorkerKernel(const __grid_constant__ PtContext ctx, const __grid_constant__ BrickPool pool,
                    const __grid_constant__ P producer) {
+  awaitPriorGrids();  // the frame's start (launchDependent); the worker releases no kernel early
   __shared__ WarpWorkerShared shared[PT_WARPS];
   int lane = static_cast<int>(threadIdx.x & 31);
   WarpWorkerShared& mine = shared[threadIdx.x >> 5];
@@ -482,7 +484,7 @@ int ptWorkerBlocksOf() {
 template <class P>
 void launchPtWorkers(const PtContext& ctx, const BrickPool& pool, const P& producer, int blocks,
                      cudaStream_t stream) {
-  ptWorkerKernel<<<blocks, PT_BLOCK, 0, stream>>>(ctx, pool, producer);
+  launchDependent(ptWorkerKernel<P>, blocks, PT_BLOCK, stream, ctx, pool, producer);
 }
 
 }  // namespace gvdp::detail
