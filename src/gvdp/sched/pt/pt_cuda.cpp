@@ -5,6 +5,7 @@
 #include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/pt/pt_cuda.h"
+#include "gvdp/sched/sp/sp_cuda.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
 namespace gvdp::detail {
@@ -53,7 +54,8 @@ class PtCuda final : public SpFrameCuda {
       cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_, stream());
       GVDP_CUDA_CHECK(cudaGetLastError());
     }
-    resolveCuda(f, buffers_, stream());
+    launchResolve(f, buffers_.payload.data(), buffers_.image.data(), buffers_.counters.data(),
+                  stream());  // its count zeroed by the frame's start
     previous_ = f;
   }
   void finishFrame(const FrameSetup& f, Image& out, FrameStats& stats) override {
@@ -99,7 +101,7 @@ class PtCuda final : public SpFrameCuda {
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
     ctx.tiles = tileOrder_.next(f, stream());
-    launchPtFrameStart(ctx, layout_, ringsQuiet_, stream());
+    launchPtFrameStart(ctx, layout_, ringsQuiet_, buffers_.counters.data() + 1, stream());
     ringsQuiet_ = false;  // until this frame's end says so
     return ctx;
   }

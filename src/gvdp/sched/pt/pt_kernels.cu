@@ -11,7 +11,7 @@ struct Filled {  // a ring whose first `filled` positions hold the ids 0, 1, ...
 }  // namespace
 
 void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, bool keepRings,
-                        cudaStream_t stream) {
+                        uint32_t* resolveCount, cudaStream_t stream) {
   const Ring order[PT_RINGS] = {ctx.rays, ctx.tasks, ctx.freeIds, ctx.lookaheadIds,
                                 ctx.prefetchIds};
   Filled rings[PT_RINGS];
@@ -20,11 +20,13 @@ void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, bool keepR
   if (!keepRings)
     for (const Filled& r : rings) slots += r.ring.mask + 1;
   const uint32_t first = keepRings ? static_cast<uint32_t>(PT_FIRST_FRAME_COUNTER) : 0u;
-  const uint32_t total = slots + static_cast<uint32_t>(PtLayout::COUNTERS) - first;
+  const uint32_t total = slots + static_cast<uint32_t>(PtLayout::COUNTERS) - first + 1;
   uint32_t* counters = ctx.counters;
   parallelForCuda("pt: frame start", stream, total, ctx.frame.timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
-                    if (i >= slots) {
+                    if (i == total - 1) {
+                      *resolveCount = 0;
+                    } else if (i >= slots) {
                       uint32_t c = i - slots + first;
                       counters[c] = initialPtCounter(c, layout);
                     } else {
