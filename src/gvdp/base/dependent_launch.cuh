@@ -12,6 +12,10 @@
 
 #include <cuda_runtime.h>
 
+#include <mutex>
+#include <unordered_map>
+#include <utility>
+
 #include "gvdp/base/cuda_util.h"
 
 namespace gvdp::detail {
@@ -30,8 +34,25 @@ __device__ __forceinline__ void releaseDependentGrids() {
 #endif
 }
 
+// Whether `kernel` was compiled for compute_90 or later, where awaitPriorGrids waits: code for an
+// older architecture (GVDP_CUDA_ARCHITECTURES, or a producer's unit built apart) run on a Hopper
+// would honour the launch attribute with no wait in it. Asked once per kernel.
+inline bool awaitsPriorGrids(const void* kernel) {
+  static std::mutex mutex;
+  static std::unordered_map<const void*, bool> known;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto [at, added] = known.try_emplace(kernel, false);
+  if (added) {
+    cudaFuncAttributes a{};
+    GVDP_CUDA_CHECK(cudaFuncGetAttributes(&a, kernel));
+    at->second = a.ptxVersion >= 90;
+  }
+  return at->second;
+}
+
 // kernel<<<grid, block, 0, stream>>>(args...), its blocks free to start before the stream's kernel
-// before it ends (the kernel awaits it: awaitPriorGrids).
+// before it ends (the kernel awaits it: awaitPriorGrids); a plain launch for a kernel compiled
+// for an older architecture.
 template <class... Params, class... Args>
 void launchDependent(void (*kernel)(Params...), dim3 grid, dim3 block, cudaStream_t stream,
                      Args&&... args) {
@@ -43,7 +64,7 @@ void launchDependent(void (*kernel)(Params...), dim3 grid, dim3 block, cudaStrea
   config.blockDim = block;
   config.stream = stream;
   config.attrs = &attribute;
-  config.numAttrs = 1;
+  config.numAttrs = awaitsPriorGrids(reinterpret_cast<const void*>(kernel)) ? 1 : 0;
   GVDP_CUDA_CHECK(cudaLaunchKernelEx(&config, kernel, std::forward<Args>(args)...));
 }
 

@@ -11,6 +11,7 @@ namespace {
 constexpr int ORDER_THREADS = 1024, ORDER_WARPS = ORDER_THREADS / 32;
 constexpr int ORDER_BUCKETS = 256;  // blockCostKey's values
 constexpr int ORDER_SCAN_ITEMS = ORDER_BUCKETS * ORDER_WARPS / ORDER_THREADS;
+static_assert(ORDER_BUCKETS * ORDER_WARPS % ORDER_THREADS == 0, "each thread scans whole items");
 
 // One block orders frame f's n blocks by the costs `before` measured (tile_order.h), most costly
 // first and row-major among equals, and zeroes f's own costs (`fresh`): a stable counting sort

@@ -52,7 +52,6 @@ class PtCuda final : public SpFrameCuda {
     {
       NvtxRange kernel("pt persistent kernel");
       cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_, stream());
-      GVDP_CUDA_CHECK(cudaGetLastError());
     }
     launchResolve(f, buffers_.payload.data(), buffers_.image.data(), buffers_.counters.data(),
                   stream());  // its count zeroed by the frame's start
