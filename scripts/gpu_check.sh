@@ -46,10 +46,12 @@ else
   echo "== tests"
   # Full output and a time limit (the tests take ~210 s on an H100): a run that hangs names its
   # test, and the sanitizers still run (one such run, never reproduced: BENCHMARKS.md, session 18).
-  timeout 420 ./carry/gvdp_tests >"$out/tests.log" 2>&1
+  # The watchdog (base/watchdog.h) ends a run whose GPU hangs, naming where (dp's rare hang).
+  GVDP_WATCHDOG_S=60 timeout 420 ./carry/gvdp_tests >"$out/tests.log" 2>&1
   rc=$?
   [ $rc -ne 0 ] && status=1
   [ $rc -eq 124 ] && echo "tests: no end after 420 s, in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
+  [ $rc -eq 3 ] && echo "tests: $(grep -E 'did not finish' "$out/tests.log" | tail -n 1), in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
   grep -E "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure" "$out/tests.log" | tail -n 25
 fi
 

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "gvdp/base/error.h"
+#include "gvdp/base/watchdog.h"
 
 #define GVDP_CUDA_CHECK(call)                                                              \
   do {                                                                                     \
@@ -54,6 +55,7 @@ class DeviceBuffer {
 // Device memory to the host after the work queued on `stream`: returns when the bytes are there.
 inline void readDevice(void* to, const void* from, size_t bytes, cudaStream_t stream) {
   GVDP_CUDA_CHECK(cudaMemcpyAsync(to, from, bytes, cudaMemcpyDeviceToHost, stream));
+  WatchedWait wait("a copy to the host");
   GVDP_CUDA_CHECK(cudaStreamSynchronize(stream));
 }
 
@@ -67,13 +69,17 @@ inline void fillDevice(void* to, int byte, size_t bytes, cudaStream_t stream) {
   if (bytes) GVDP_CUDA_CHECK(cudaMemsetAsync(to, byte, bytes, stream));
 }
 
-// An NVTX range (Nsight Systems shows the frame's phases), for the lifetime of the object.
+// An NVTX range (Nsight Systems shows the frame's phases), for the lifetime of the object; also
+// the watchdog's phase (base/watchdog.h). `name` outlives it (a literal).
 class NvtxRange {
  public:
-  explicit NvtxRange(const char* name) { nvtxRangePushA(name); }
+  explicit NvtxRange(const char* name) : phase_(name) { nvtxRangePushA(name); }
   ~NvtxRange() { nvtxRangePop(); }
   NvtxRange(const NvtxRange&) = delete;
   NvtxRange& operator=(const NvtxRange&) = delete;
+
+ private:
+  WatchPhase phase_;
 };
 
 // CUDA events timing a region of a stream, in milliseconds.
@@ -92,6 +98,7 @@ class GpuTimer {
   void start(cudaStream_t s) { GVDP_CUDA_CHECK(cudaEventRecord(start_, s)); }
   void stop(cudaStream_t s) { GVDP_CUDA_CHECK(cudaEventRecord(stop_, s)); }
   float ms() {
+    WatchedWait wait("the end of the timed work");
     GVDP_CUDA_CHECK(cudaEventSynchronize(stop_));
     float ms = 0.0f;
     GVDP_CUDA_CHECK(cudaEventElapsedTime(&ms, start_, stop_));

@@ -1,6 +1,7 @@
 #include "gvdp/base/gpu.h"
 
 #include "gvdp/base/error.h"
+#include "gvdp/base/watchdog.h"
 
 #if GVDP_HAS_CUDA
 #include <cuda_runtime_api.h>
@@ -96,6 +97,7 @@ void PinnedDownload::start(GpuStream stream) {
 }
 
 const void* PinnedDownload::wait() {
+  WatchedWait wait("an image download");
   check(cudaEventSynchronize(static_cast<cudaEvent_t>(event_)), "image download");
   return host_;
 }
