@@ -66,8 +66,8 @@ void HostCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineVie
 }
 
 void HostCacheOps::startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
-                              const TimelineView&) {
-  for (uint32_t i = 0; i < settle; ++i) settleFreshSlot(v, i);
+                              const TimelineView& t) {
+  settleFresh(v, settle, t);
   for (uint32_t i = 0; i < COUNTER_COUNT; ++i) startFrameCounter(v.counters, i, deadlineNs);
 }
 
