@@ -84,7 +84,8 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "(persistent threads), graph (sp as one CUDA graph, cuda only) or direct (no "
                   "cache, the reference)");
   cmd->add_option("--pending-launches", f.pendingLaunches,
-                  "dp: CDP pending-launch buffer (task-queue capacity on the CPU), default 65536");
+                  "dp: CDP pending-launch buffer, a frame launching at most half of it (task-queue "
+                  "capacity on the CPU), default 65536");
   cmd->add_option("--lookahead", f.lookahead,
                   "pt: missing bricks a stopped ray claims ahead of it, 0.." +
                       std::to_string(MAX_LOOKAHEAD) + " (default " +

@@ -53,9 +53,11 @@ class DeviceBuffer {
 };
 
 // Device memory to the host after the work queued on `stream`: returns when the bytes are there.
+// The wait is watched from the copy's call on: into pageable memory (`to` is, mostly) the copy
+// itself waits for the stream's work.
 inline void readDevice(void* to, const void* from, size_t bytes, cudaStream_t stream) {
-  GVDP_CUDA_CHECK(cudaMemcpyAsync(to, from, bytes, cudaMemcpyDeviceToHost, stream));
   WatchedWait wait("a copy to the host");
+  GVDP_CUDA_CHECK(cudaMemcpyAsync(to, from, bytes, cudaMemcpyDeviceToHost, stream));
   GVDP_CUDA_CHECK(cudaStreamSynchronize(stream));
 }
 

@@ -22,6 +22,7 @@ enum DpCounter : int {
   DP_RELAUNCHES,       // render relaunches
   DP_LAUNCH_FAILURES,  // launches refused (pending-launch buffer full)
   DP_DEFERRED,         // productions left to the host sweep (launch depth limit)
+  DP_RESERVED,         // GPU: device launches reserved from the frame's allowance (dp_kernels.cuh)
   DP_COUNTER_COUNT
 };
 
@@ -38,6 +39,7 @@ struct DpContext {
   uint32_t* locks;     // per pixel: RAY_FREE, RAY_HELD or RAY_DONE
   uint32_t* counters;  // DpCounter
   BrickPool pool;
+  uint32_t launchAllowance;  // GPU: the device launches a frame may make (dp_kernels.cuh)
 };
 
 // Pixels whose centre ray may cross the brick (paper 3.3.2): the projected corners' bounds,
@@ -78,7 +80,8 @@ GVDP_HD GVDP_INLINE PixelRect brickScreenRect(const FrameSetup& f, const Clipmap
 // budgeted frame's deadline (no ray waits for it) is queued instead, for the sweep at the frame's
 // end: launched, it would relaunch its brick's rays for nothing, and one ray past the deadline
 // claims every missing brick on its path. Launched from the render threads, those claims hung 9
-// of 15 cold 96x64 runs at budget 0 on an H100 (cause inside the device runtime not isolated);
+// of 15 cold 96x64 runs at budget 0 on an H100, before the frame's launch allowance kept the
+// device runtime from refusing launches (dp_kernels.cuh; a refusing runtime hung the tree);
 // queued, 15 of 15 finished.
 template <class Launcher>
 struct LaunchProduction {

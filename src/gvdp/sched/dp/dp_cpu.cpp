@@ -61,7 +61,7 @@ class DpCpu final : public SpFrameCpu {
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
     BrickPool pool = cache_.pool();
-    DpContext ctx{f, view, payload_.data(), locks_.data(), counters, pool};
+    DpContext ctx{f, view, payload_.data(), locks_.data(), counters, pool, 0};
 
     // Root launch: the screen in 32x16 tiles (not limited by the pending-launch capacity).
     TaskQueue<DpTask> queue(pendingLaunches_ + static_cast<size_t>(dpTileCount(f)));

@@ -20,7 +20,10 @@ class DpCuda final : public SpFrameCuda {
         "and the producer's translation unit with relocatable device code");
     size_t free0 = 0, free1 = 0, total = 0;
     GVDP_CUDA_CHECK(cudaMemGetInfo(&free0, &total));
-    GVDP_CUDA_CHECK(cudaDeviceSetLimit(cudaLimitDevRuntimePendingLaunchCount, pendingLaunches_));
+    {
+      WatchedWait wait("the device runtime's new launch buffer");  // waits for the device
+      GVDP_CUDA_CHECK(cudaDeviceSetLimit(cudaLimitDevRuntimePendingLaunchCount, pendingLaunches_));
+    }
     GVDP_CUDA_CHECK(cudaMemGetInfo(&free1, &total));
     cdpBytes_ = free0 > free1 ? free0 - free1 : 0;
   }
@@ -49,7 +52,13 @@ class DpCuda final : public SpFrameCuda {
     fillDevice(buffers_.payload.data(), 0, buffers_.payload.bytes(), stream());  // fresh rays
     CacheView view = cache_.view();
     view.degradeOnFailure = 1;
-    DpContext ctx{f, view, buffers_.payload.data(), locks_.data(), counters_.data(), cache_.pool()};
+    DpContext ctx{f,
+                  view,
+                  buffers_.payload.data(),
+                  locks_.data(),
+                  counters_.data(),
+                  cache_.pool(),
+                  pendingLaunches_ / 2};
     writeDevice(context_.data(), &ctx, sizeof ctx, stream());
     {
       NvtxRange schedule("dp device schedule");

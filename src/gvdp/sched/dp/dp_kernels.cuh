@@ -19,6 +19,14 @@ namespace gvdp::detail {
 constexpr int DP_MAX_DEPTH = 23;
 constexpr int DP_RELAUNCH_BLOCK = 16;
 
+// The device runtime's pending-launch buffer is never let fill: a frame's device launches are
+// at most its allowance (DpContext::launchAllowance, half the buffer; the host waits for the
+// whole tree before the next frame, so no launch of an earlier frame is pending). A launch past
+// it is refused as one the runtime refuses: counted, its rays left to the sweep.
+__device__ inline bool reserveLaunch(const DpContext* ctx) {
+  return atomicAdd(&ctx->counters[DP_RESERVED], 1u) < ctx->launchAllowance;
+}
+
 template <class P>
 __global__ void dpProduceKernel(const DpContext* ctx, P producer, BrickKey key, int depth);
 template <class P>
@@ -36,9 +44,13 @@ struct GpuLauncher {
       atomicAdd(&ctx->counters[DP_DEFERRED], 1u);
       return;
     }
-    dpProduceKernel<<<1, PRODUCE_BLOCK, 0, cudaStreamFireAndForget>>>(ctx, producer, key,
-                                                                      depth + 1);
-    if (cudaGetLastError() == cudaSuccess) {
+    bool launched = reserveLaunch(ctx);
+    if (launched) {
+      dpProduceKernel<<<1, PRODUCE_BLOCK, 0, cudaStreamFireAndForget>>>(ctx, producer, key,
+                                                                        depth + 1);
+      launched = cudaGetLastError() == cudaSuccess;
+    }
+    if (launched) {
       atomicAdd(&ctx->counters[DP_PRODUCTIONS], 1u);
     } else {  // refused: the brick is MISSING again; its rays are left to the sweep
       storeRelease32(entry, ENTRY_MISSING);
@@ -55,8 +67,12 @@ struct GpuLauncher {
     dim3 block(DP_RELAUNCH_BLOCK, DP_RELAUNCH_BLOCK);
     dim3 grid((r.width() + DP_RELAUNCH_BLOCK - 1) / DP_RELAUNCH_BLOCK,
               (r.height() + DP_RELAUNCH_BLOCK - 1) / DP_RELAUNCH_BLOCK);
-    dpRenderRectKernel<<<grid, block, 0, cudaStreamFireAndForget>>>(ctx, producer, r, depth + 1);
-    if (cudaGetLastError() == cudaSuccess)
+    bool launched = reserveLaunch(ctx);
+    if (launched) {
+      dpRenderRectKernel<<<grid, block, 0, cudaStreamFireAndForget>>>(ctx, producer, r, depth + 1);
+      launched = cudaGetLastError() == cudaSuccess;
+    }
+    if (launched)
       atomicAdd(&ctx->counters[DP_RELAUNCHES], 1u);
     else
       atomicAdd(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
