@@ -10,6 +10,9 @@
 # Extra arguments go to every bench (e.g. --scenes forest).
 # Usage: scripts/ab_gpu.sh ROUNDS SCHEDULERS MOVEMENTS BIN [BIN...] [-- BENCH_ARGS...]
 set -uo pipefail
+# A GPU hang ends its run in a minute with a line naming where it waited (base/watchdog.h),
+# instead of taking the rest of the call.
+export GVDP_WATCHDOG_S="${GVDP_WATCHDOG_S:-60}"
 cd "$(dirname "$0")/.."
 results="${OUT:-out/ab}"
 out=$(mktemp -d)

@@ -6,6 +6,9 @@
 #   (default: cuda sp 10 750x500; half the bench's size keeps PNG encoding short)
 #   NEW_ARGS="--prefetch 4": more flags for the new binary (an option that must not change images)
 set -uo pipefail
+# A GPU hang ends its run in a minute with a line naming where it waited (base/watchdog.h),
+# instead of taking the rest of the call.
+export GVDP_WATCHDOG_S="${GVDP_WATCHDOG_S:-60}"
 old=$1 new=$2 backend=${3:-cuda} scheduler=${4:-sp} frames=${5:-10} size=${6:-750x500}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
