@@ -84,8 +84,8 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "(persistent threads), graph (sp as one CUDA graph, cuda only) or direct (no "
                   "cache, the reference)");
   cmd->add_option("--pending-launches", f.pendingLaunches,
-                  "dp: CDP pending-launch buffer, a frame launching at most half of it (task-queue "
-                  "capacity on the CPU), default 65536");
+                  "dp: CDP pending-launch buffer, a frame (or tile) launching at most half of it "
+                  "on the GPU (task-queue capacity on the CPU), default 65536");
   cmd->add_option("--lookahead", f.lookahead,
                   "pt: missing bricks a stopped ray claims ahead of it, 0.." +
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
@@ -348,7 +348,7 @@ int runRender(const RenderFlags& flags) {
           std::printf("           tasks %llu  relaunched rays %llu\n",
                       static_cast<unsigned long long>(s.launches),
                       static_cast<unsigned long long>(s.relaunchedRays));
-        else if (s.launches)
+        else if (s.launches || s.launchFailures || s.deferred || s.sweptPixels)
           std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
                       static_cast<unsigned long long>(s.launches),
                       static_cast<unsigned long long>(s.launchFailures),

@@ -20,7 +20,8 @@ constexpr int DP_TILE_W = 32, DP_TILE_H = 16;
 enum DpCounter : int {
   DP_PRODUCTIONS,      // production launches
   DP_RELAUNCHES,       // render relaunches
-  DP_LAUNCH_FAILURES,  // launches refused (pending-launch buffer full)
+  DP_LAUNCH_FAILURES,  // launches refused: past the frame's allowance or by the runtime (GPU),
+                       // the task queue full (CPU)
   DP_DEFERRED,         // productions left to the host sweep (launch depth limit)
   DP_RESERVED,         // GPU: device launches reserved from the frame's allowance (dp_kernels.cuh)
   DP_COUNTER_COUNT
@@ -80,9 +81,9 @@ GVDP_HD GVDP_INLINE PixelRect brickScreenRect(const FrameSetup& f, const Clipmap
 // budgeted frame's deadline (no ray waits for it) is queued instead, for the sweep at the frame's
 // end: launched, it would relaunch its brick's rays for nothing, and one ray past the deadline
 // claims every missing brick on its path. Launched from the render threads, those claims hung 9
-// of 15 cold 96x64 runs at budget 0 on an H100, before the frame's launch allowance kept the
-// device runtime from refusing launches (dp_kernels.cuh; a refusing runtime hung the tree);
-// queued, 15 of 15 finished.
+// of 15 cold 96x64 runs at budget 0 on an H100; queued, 15 of 15 finished. That was before the
+// frame's launch allowance (dp_kernels.cuh), likely the same hang (the runtime refusing
+// launches), not run again since.
 template <class Launcher>
 struct LaunchProduction {
   Launcher* launcher;
