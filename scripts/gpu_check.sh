@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # On a machine with a GPU, with the binaries built elsewhere and carried in carry/ (carry/gvdp,
 # carry/gvdp_tests from preset default; carry/nocdp/gvdp from preset nocdp):
-#   1. every test (GPU ones included);
+#   1. every test (GPU ones included), then dp's 32-launch buffer test 100 times over;
 #   2. compute-sanitizer's four tools on every scheduler, each with a large pool (forest
 #      walkthrough, 20000 bricks), a tiny one (random-spheres backward, 64 bricks: refills and
 #      degraded frames, --tiles off), the large one with --budget-ms 0 ("late": every claim past
@@ -12,8 +12,8 @@
 #      download as uninitialised since it never saw the kernels' writes;
 #   3. unless frames is 0, a 1500x1000 walkthrough of each scene per scheduler (montages).
 # Prints one line per tool, scheduler and pool; exits 1 on any failed test or any tool error.
-# Writes to $OUT (or out/gpu_check): device.txt, tests.log, sanitizer.log, renders.log,
-# montage_<scheduler>.png.
+# Writes to $OUT (or out/gpu_check): device.txt, tests.log, dp_stress.log, sanitizer.log,
+# renders.log, montage_<scheduler>.png.
 # Usage: scripts/gpu_check.sh [frames] [schedulers...]   (default: 0, all five schedulers)
 #   TOOLS="memcheck racecheck" and POOLS="large tiny" (environment) run only those tools and
 #   pools (default: all four of each); TESTS=0 skips the tests (when another call runs them).
@@ -53,6 +53,15 @@ else
   [ $rc -eq 124 ] && echo "tests: no end after 420 s, in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
   [ $rc -eq 3 ] && echo "tests: $(grep -E 'did not finish' "$out/tests.log" | tail -n 1), in $(grep -E '^\[ RUN' "$out/tests.log" | tail -n 1)"
   grep -E "^\[  (FAILED|PASSED|SKIPPED) |^\[==========\]|measure" "$out/tests.log" | tail -n 25
+  # dp's launch allowance under stress: before it, a 32-launch buffer hung the launch tree once in
+  # about 35 repeats of these 5 tests (BENCHMARKS.md, session 35); 100 repeats take ~25 s.
+  GVDP_WATCHDOG_S=20 timeout 120 ./carry/gvdp_tests --gtest_filter='*TinyLaunchBuffer*' \
+    --gtest_repeat=100 >"$out/dp_stress.log" 2>&1
+  rc=$?
+  [ $rc -ne 0 ] && status=1
+  echo "dp stress (32 pending launches, 100 repeats of 5 scenes): rc $rc, \
+$(grep -cE 'PASSED  \] 5 tests' "$out/dp_stress.log") repeats passed \
+$(grep -E 'did not finish' "$out/dp_stress.log" | tail -n 1)"
 fi
 
 # One sanitizer run: prints "<tool> <scheduler> <pool>: <the tool's summary>", FAIL if the tool
