@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Where a frame's idle lies, from a `gvdp timeline --trace` file (Chrome trace events, one
+thread per SM): the idle share of the frame's span (SM-time with no record open, over span x
+SMs) split into the frame's start (to the first render record), the worker's last TAIL us, the
+time between, and what follows the worker (the resolve); then the worker's last TAIL us in bins:
+the share of SM-time busy (any record open), with each kind of record, and the records (warp
+spans) of each kind open in the bin.
+
+Usage: scripts/timeline_tail.py TRACE.json [--tail US] [--bin US] [--sms N]
+"""
+import argparse
+import json
+import sys
+
+
+def union_length(spans, lo, hi):
+    """Length of the union of [start, end) spans clipped to [lo, hi)."""
+    total, cursor = 0.0, lo
+    for s, e in sorted(spans):
+        s, e = max(s, cursor), min(e, hi)
+        if e > s:
+            total += e - s
+            cursor = e
+    return total
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("trace")
+    ap.add_argument("--tail", type=float, default=240.0, help="the worker's last us (240)")
+    ap.add_argument("--bin", type=float, default=20.0, help="bin width in us (20)")
+    ap.add_argument("--sms", type=int, default=0, help="SMs (default: the trace's thread names)")
+    a = ap.parse_args()
+    try:
+        events = json.load(open(a.trace))["traceEvents"]
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"timeline_tail: cannot read trace '{a.trace}': {e}")
+    sms = a.sms or sum(1 for e in events if e.get("ph") == "M" and e.get("name") == "thread_name")
+    recs = [(e["tid"], e["ts"], e["ts"] + e["dur"], e["cat"]) for e in events if e.get("ph") == "X"]
+    if not recs or sms == 0:
+        sys.exit(f"timeline_tail: no records or SMs in '{a.trace}'")
+    t0, t1 = min(r[1] for r in recs), max(r[2] for r in recs)
+    worker = [r for r in recs if r[3] in ("render", "production", "prefetch")]
+    first = min(r[1] for r in worker if r[3] == "render")
+    last = max(r[2] for r in worker)
+    tail0 = max(first, last - a.tail)
+    by_sm = {}
+    for sm, s, e, _ in recs:
+        by_sm.setdefault(sm, []).append((s, e))
+    span = t1 - t0
+
+    def idle(lo, hi):
+        busy = sum(union_length(v, lo, hi) for v in by_sm.values())
+        return 100.0 * ((hi - lo) * sms - busy) / (span * sms)
+
+    print(f"{a.trace}: span {span:.0f} us, {sms} SMs, {len(recs)} records, idle "
+          f"{idle(t0, t1):.1f}%: start to the first render record ({first - t0:.0f} us) "
+          f"{idle(t0, first):.1f}%, between {idle(first, tail0):.1f}%, the worker's last "
+          f"{last - tail0:.0f} us {idle(tail0, last):.1f}%, after the worker {idle(last, t1):.1f}%")
+    kinds = ("render", "production", "prefetch")
+    print(f"{'bin (us from start)':>20} {'busy':>6} " + " ".join(f"{k:>10}" for k in kinds) + " " +
+          " ".join(f"{k[:6] + ' recs':>11}" for k in kinds))
+    kind_sm = {}
+    for sm, s, e, k in worker:
+        kind_sm.setdefault((k, sm), []).append((s, e))
+    b = tail0
+    while b < last:
+        hi = min(b + a.bin, last)
+        width = (hi - b) * sms / 100.0
+        busy = sum(union_length(v, b, hi) for v in by_sm.values()) / width
+        line = f"{b - t0:9.0f}-{hi - t0:<10.0f} {busy:5.1f}% "
+        for k in kinds:
+            share = sum(union_length(v, b, hi) for (kk, _), v in kind_sm.items() if kk == k) / width
+            line += f"{share:9.1f}% "
+        for k in kinds:
+            line += f"{sum(1 for r in worker if r[3] == k and r[1] < hi and r[2] > b):11d} "
+        print(line.rstrip())
+        b = hi
+
+
+if __name__ == "__main__":
+    main()
