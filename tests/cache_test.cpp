@@ -613,9 +613,10 @@ namespace {
 
 // CachedAccess as if every cell of every resident brick were occupied: the march then reads every
 // sample (no clear cell, no clear brick left early).
+// (Marcher::seek calls lookupAt.)
 struct EveryCellOccupied : CachedAccess<BrickPool> {
-  BrickLookup lookup(int level, Vec3i brick) {
-    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
+  BrickLookup lookupAt(int level, Vec3i brick, int step) {
+    BrickLookup b = CachedAccess<BrickPool>::lookupAt(level, brick, step);
     b.occupancy = ~uint64_t{0};
     return b;
   }
@@ -624,8 +625,8 @@ struct EveryCellOccupied : CachedAccess<BrickPool> {
 // CachedAccess whose resident bricks serve no run (render/march.h): a StandIn of the ray's own
 // level is found again per sample, brick by brick, as the march did before runs.
 struct NoRuns : CachedAccess<BrickPool> {
-  BrickLookup lookup(int level, Vec3i brick) {
-    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
+  BrickLookup lookupAt(int level, Vec3i brick, int step) {
+    BrickLookup b = CachedAccess<BrickPool>::lookupAt(level, brick, step);
     if (b.state == BrickState::Resident) b.state = BrickState::StandIn;
     return b;
   }
@@ -759,7 +760,7 @@ MarchResult marchWithHints(const Ray& ray, const Lod& lod, RayState& s,
   Marcher<CachedAccess<BrickPool>> m(ray, lod, s, access);
   SeekHint hints[32];
   for (;;) {
-    if (!s.finished(lod) && access.asksHints() && !access.hintsCover(s.level, s.step)) {
+    if (access.asksHints(s) && !access.hintsCover(s.level, s.step)) {
       for (int j = 0; j < 32; ++j) {
         hints[j] = seekHintOf(access, ray, lod, s.level, s.step, j);
         if (corrupt && hints[j].index != NO_HINT) hints[j] = {hints[j].index, ENTRY_EMPTY, 0};

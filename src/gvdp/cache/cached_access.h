@@ -219,11 +219,12 @@ struct CachedAccess {
     return {BrickState::Stop, 0u, level, brick};
   }
 
-  // Seek hints (render/seek_hints.h). Whether the march, having looked up HINT_AFTER bricks, would
-  // take hints now; whether those it has cover the sample at `step` of `level` (and the one after
-  // it: a brick whose samples begin between two hints is the later one's, or neither's).
-  GVDP_HD bool asksHints() const {
-    return lookups >= HINT_AFTER;
+  // Seek hints (render/seek_hints.h). Whether the march of a ray in state s (unfinished: a seek
+  // may have just moved it past its last level), having looked up HINT_AFTER bricks, would take
+  // hints now; whether those it has cover the sample at `step` of `level` (and the one after it:
+  // a brick whose samples begin between two hints is the later one's, or neither's).
+  GVDP_HD bool asksHints(const RayState& s) const {
+    return lookups >= HINT_AFTER && !s.finished(lod);
   }
   GVDP_HD bool hintsCover(int level, int step) const {
     return hints && level == hintLevel && step - hintStep < (hintCount - 1) * HINT_SPACING;

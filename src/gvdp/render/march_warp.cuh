@@ -54,13 +54,14 @@ __device__ inline int inclusiveWarpSum(int v, int lane) {
 // rays that ask for hints have none for their step, and at most WARP_SIZE / HINT_MIN_LANES rays
 // ask, each of those rays gets the hints of a group of WARP_SIZE / n lanes (n their count, rounded
 // up to a power of 2), each lane reading one brick. Hints are rewritten for every ray that asks at
-// once; every other ray's are dropped (their slots are rewritten). The barrier before the writes
-// orders them after the last round's reads, the one after them before the seeks'.
+// once; every other ray's are dropped (their slots are rewritten). The barrier before the reads
+// orders them after the rays' writes (marchWarp's start) and the writes after the last round's
+// reads of the hints; the one after the writes orders them before the seeks'.
 template <class Access>
 __device__ void fillSeekHints(const Lod& lod, const RayState& s, Access& access, bool seeking,
                               WarpMarchShared& shared, int lane) {
   if constexpr (requires { access.peekHint(0, Vec3i{0, 0, 0}); }) {
-    bool asks = seeking && access.asksHints();
+    bool asks = seeking && access.asksHints(s);
     unsigned asking = __ballot_sync(FULL_WARP, asks);
     int n = __popc(asking);
     if (!__any_sync(FULL_WARP, asks && !access.hintsCover(s.level, s.step)) ||
@@ -70,9 +71,9 @@ __device__ void fillSeekHints(const Lod& lod, const RayState& s, Access& access,
     int owner = group < n ? static_cast<int>(__fns(asking, 0, group + 1)) : 0;
     int level = __shfl_sync(FULL_WARP, s.level, owner),
         step = __shfl_sync(FULL_WARP, s.step, owner);
+    __syncwarp();
     SeekHint h{NO_HINT, 0u, 0};
     if (group < n) h = seekHintOf(access, shared.rays[owner], lod, level, step, lane % lanes);
-    __syncwarp();
     shared.hints[lane] = h;
     __syncwarp();
     int rank = __popc(asking & ((1u << lane) - 1u));
