@@ -1,4 +1,3 @@
-#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -613,10 +612,9 @@ namespace {
 
 // CachedAccess as if every cell of every resident brick were occupied: the march then reads every
 // sample (no clear cell, no clear brick left early).
-// (Marcher::seek calls lookupAt.)
 struct EveryCellOccupied : CachedAccess<BrickPool> {
-  BrickLookup lookupAt(int level, Vec3i brick, int step) {
-    BrickLookup b = CachedAccess<BrickPool>::lookupAt(level, brick, step);
+  BrickLookup lookup(int level, Vec3i brick) {
+    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
     b.occupancy = ~uint64_t{0};
     return b;
   }
@@ -625,8 +623,8 @@ struct EveryCellOccupied : CachedAccess<BrickPool> {
 // CachedAccess whose resident bricks serve no run (render/march.h): a StandIn of the ray's own
 // level is found again per sample, brick by brick, as the march did before runs.
 struct NoRuns : CachedAccess<BrickPool> {
-  BrickLookup lookupAt(int level, Vec3i brick, int step) {
-    BrickLookup b = CachedAccess<BrickPool>::lookupAt(level, brick, step);
+  BrickLookup lookup(int level, Vec3i brick) {
+    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
     if (b.state == BrickState::Resident) b.state = BrickState::StandIn;
     return b;
   }
@@ -747,57 +745,6 @@ TEST(Cache, MarchesPausedAnywhereResumeWithoutChangingAPixel) {
           return march(ray, lod, s, access);  // Paused: resumed alone
         });
   }
-}
-
-namespace {
-
-// marchWarp's seek hints (render/seek_hints.h) as one lane would take them from its group: after
-// HINT_AFTER lookups, whenever its hints do not cover its step, the 32 hints of seekHintOf are
-// read for it and taken. `corrupt` turns every hint into an EMPTY box of the brick alone.
-MarchResult marchWithHints(const Ray& ray, const Lod& lod, RayState& s,
-                           CachedAccess<BrickPool>& access, bool corrupt, int* fills) {
-  using Seek = Marcher<CachedAccess<BrickPool>>::Seek;
-  Marcher<CachedAccess<BrickPool>> m(ray, lod, s, access);
-  SeekHint hints[32];
-  for (;;) {
-    if (access.asksHints(s) && !access.hintsCover(s.level, s.step)) {
-      for (int j = 0; j < 32; ++j) {
-        hints[j] = seekHintOf(access, ray, lod, s.level, s.step, j);
-        if (corrupt && hints[j].index != NO_HINT) hints[j] = {hints[j].index, ENTRY_EMPTY, 0};
-      }
-      access.takeHints(hints, s.level, s.step, 32);
-      ++*fills;
-    }
-    Seek k = m.seek();
-    if (k == Seek::Moved) continue;
-    if (k != Seek::Due) return k == Seek::Stopped ? MarchResult::Stopped : MarchResult::Finished;
-    m.composite(access.sample(m.resident, m.position()));
-  }
-}
-
-}  // namespace
-
-// A march whose seeks take their brick decisions from seek hints where one names the brick
-// samples what march() samples, bit for bit, with the same samples and lookups; the hints are
-// taken (a march with corrupted hints renders another picture).
-TEST(Cache, SeekHintsChangeNoPixel) {
-  for (const char* scene : {"perlin", "forest", "random-spheres"}) {
-    int fills = 0;
-    expectSameMarches(
-        scene, plainAccess, plainAccess,
-        [&fills](const Ray& ray, const Lod& lod, RayState& s, CachedAccess<BrickPool>& access) {
-          return marchWithHints(ray, lod, s, access, false, &fills);
-        },
-        true);
-    EXPECT_GT(fills, 100) << scene;
-  }
-  EXPECT_FATAL_FAILURE(expectSameMarches("perlin", plainAccess, plainAccess,
-                                         [](const Ray& ray, const Lod& lod, RayState& s,
-                                            CachedAccess<BrickPool>& access) {
-                                           static int fills = 0;
-                                           return marchWithHints(ray, lod, s, access, true, &fills);
-                                         }),
-                       "");
 }
 
 // Leaving clear cells and clear bricks early changes no pixel, bit for bit, and saves most of the

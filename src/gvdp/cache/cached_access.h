@@ -15,7 +15,6 @@
 #include "gvdp/cache/cache_ops.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/render/march.h"
-#include "gvdp/render/seek_hints.h"
 
 namespace gvdp::detail {
 
@@ -97,10 +96,6 @@ struct CachedAccess {
   uint32_t samples = 0, lookups = 0, skips = 0;  // this march's (addCounts after it)
   uint32_t coarser = 0;     // 1 once a coarser level stood in for a brick that was not ready
   uint32_t lateClaims = 0;  // bricks claimed past the deadline (lateStandIn)
-  // This march's seek hints (render/seek_hints.h; null: none): `hintCount` of them for the samples
-  // hintStep, hintStep + HINT_SPACING, ... of level hintLevel.
-  const SeekHint* hints = nullptr;
-  int hintLevel = 0, hintStep = 0, hintCount = 0;
 
   // An ancestor's entry, null outside its window (never read: it would alias another brick).
   GVDP_HD uint32_t* entryOf(int level, Vec3i localBrick) const {
@@ -159,34 +154,19 @@ struct CachedAccess {
     addMarchCounts(cache, samples, lookups, skips, coarser);
   }
 
-  // The lookup of the brick under the sample at `step` of `level` (render/march.h: Marcher::seek),
-  // which a seek hint may answer.
-  GVDP_HD BrickLookup lookupAt(int level, Vec3i brick, int step) {
+  GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
     ++lookups;
-    BrickLookup b = find(level, brick, step);
+    BrickLookup b = find(level, brick);
     skips += b.state == BrickState::Empty ? 1u : 0u;
     return b;
   }
 
-  GVDP_HD BrickLookup lookup(int level, Vec3i brick) {
-    return lookupAt(level, brick, -1);
-  }
-
-  // step: the sample's, whose hints may answer (-1: none).
-  GVDP_HD BrickLookup find(int level, Vec3i brick, int step = -1) {
+  GVDP_HD BrickLookup find(int level, Vec3i brick) {
     // The clipmap width covers every sample of a level (lod_test checks the formula); a brick
     // outside its window could only alias another one, so it is never read.
     uint32_t index = cache.clipmap.windowEntryOfLocal(level, brick);
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
-    if (const SeekHint* h = hinted(level, step, index)) {
-      if (h->up == 0)
-        return isSlot(h->entry) ? resident(entry, h->entry, level, brick)
-                                : empty(level, brick, h->entry);
-      Vec3i a = brick;
-      for (int up = 0; up < h->up; ++up) a = halfFloor(a);
-      return empty(level + h->up, a, h->entry);
-    }
     uint32_t e = loadRelaxed32(entry);
     if (isSlot(e)) return resident(entry, e, level, brick);
     if (isEmptyEntry(e)) return empty(level, brick, e);
@@ -217,47 +197,6 @@ struct CachedAccess {
     stopLevel = level;
     stopBrick = brick;
     return {BrickState::Stop, 0u, level, brick};
-  }
-
-  // Seek hints (render/seek_hints.h). Whether the march of a ray in state s (unfinished: a seek
-  // may have just moved it past its last level), having looked up HINT_AFTER bricks, would take
-  // hints now; whether those it has cover the sample at `step` of `level` (and the one after it:
-  // a brick whose samples begin between two hints is the later one's, or neither's).
-  GVDP_HD bool asksHints(const RayState& s) const {
-    return lookups >= HINT_AFTER && !s.finished(lod);
-  }
-  GVDP_HD bool hintsCover(int level, int step) const {
-    return hints && level == hintLevel && step - hintStep < (hintCount - 1) * HINT_SPACING;
-  }
-  GVDP_HD void takeHints(const SeekHint* h, int level, int step, int count) {
-    hints = h;
-    hintLevel = level;
-    hintStep = step;
-    hintCount = count;
-  }
-  // The hint that names entry `index` for the sample at `step` of `level`, or null.
-  GVDP_HD const SeekHint* hinted(int level, int step, uint32_t index) const {
-    if (!hints || level != hintLevel || step < hintStep) return nullptr;
-    int j = (step - hintStep) / HINT_SPACING;
-    for (int k = j; k < j + 2 && k < hintCount; ++k)
-      if (hints[k].index == index) return &hints[k];
-    return nullptr;
-  }
-  // What find() would decide on for a brick, read without a stamp or a claim: its slot or EMPTY
-  // entry, else its nearest EMPTY ancestor's below any resident one (none: NO_HINT).
-  GVDP_HD SeekHint peekHint(int level, Vec3i brick) const {
-    uint32_t index = cache.clipmap.windowEntryOfLocal(level, brick);
-    if (index == Clipmap::NOT_IN_WINDOW) return {NO_HINT, 0u, 0};
-    uint32_t e = loadRelaxed32(&cache.entries[index]);
-    if (isSlot(e) || isEmptyEntry(e)) return {index, e, 0};
-    Vec3i a = brick;
-    for (int up = level + 1; up < lod.levels; ++up) {
-      a = halfFloor(a);
-      uint32_t ea = peek(entryOf(up, a));
-      if (isEmptyEntry(ea)) return {index, ea, up - level};
-      if (isSlot(ea)) break;
-    }
-    return {NO_HINT, 0u, 0};
   }
 
   // Past the deadline: the nearest resident coarser ancestor stands in, and the bricks are claimed

@@ -97,8 +97,6 @@ enum class MarchResult : uint8_t { Finished, Stopped, Paused };
 // Access provides:
 //   BrickLookup lookup(int level, Vec3i brick)   brick: local brick coordinates at that level
 //   Vec4f sample(const BrickLookup&, Vec3f p)    p: local position of the sample
-// and optionally BrickLookup lookupAt(int level, Vec3i brick, int step), lookup() for the sample
-// at `step` of `level` (which seek hints may answer: render/seek_hints.h).
 // A resident lookup of the ray's level serves a run of samples (march, below). Otherwise a lookup
 // is reused while the samples stay in its brick, a StandIn while they stay in its box (a coarser
 // Resident one - the lookahead's prediction - is looked up again at every sample: the lookahead
@@ -108,14 +106,6 @@ GVDP_HD GVDP_INLINE bool covers(const BrickLookup& r, int level, Vec3i brick) {
   int up = r.level - level;
   return r.state == BrickState::StandIn && up > 0 &&
          Vec3i{brick.x >> up, brick.y >> up, brick.z >> up} == r.brick;
-}
-
-template <class Access>
-GVDP_HD GVDP_INLINE BrickLookup lookupAtStep(Access& access, int level, Vec3i brick, int step) {
-  if constexpr (requires { access.lookupAt(level, brick, step); })
-    return access.lookupAt(level, brick, step);
-  else
-    return access.lookup(level, brick);
 }
 
 // A ray's march as a sequence of steps, so that a warp can share the sampling of its lanes' rays
@@ -163,7 +153,7 @@ struct Marcher {
     Vec3f p = ray.o + ray.d * t;
     Vec3i brick = span.brickOf(p);
     if (covers(resident, s.level, brick)) return Seek::Due;
-    BrickLookup b = lookupAtStep(access, s.level, brick, s.step);
+    BrickLookup b = access.lookup(s.level, brick);
     if (b.state == BrickState::Stop) return Seek::Stopped;
     if (b.state == BrickState::End) {
       s.level = lod.levels;

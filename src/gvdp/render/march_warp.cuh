@@ -18,7 +18,6 @@
 #pragma once
 
 #include "gvdp/render/march.h"
-#include "gvdp/render/seek_hints.h"
 
 namespace gvdp::detail {
 
@@ -39,7 +38,6 @@ struct WarpMarchShared {
   SharedRun runs[WARP_SIZE];  // per lane, while its run is read
   Vec4f samples[WARP_CHUNK];  // the samples read, in the order of the runs
   int owner[WARP_CHUNK];      // the lane whose samples start at each position
-  SeekHint hints[WARP_SIZE];  // seek hints, a group of lanes' per seeking ray (fillSeekHints)
 };
 
 __device__ inline int inclusiveWarpSum(int v, int lane) {
@@ -48,37 +46,6 @@ __device__ inline int inclusiveWarpSum(int v, int lane) {
     if (lane >= d) v += u;
   }
   return v;
-}
-
-// Seek hints (render/seek_hints.h), where the Access takes them: when some of the warp's seeking
-// rays that ask for hints have none for their step, and at most WARP_SIZE / HINT_MIN_LANES rays
-// ask, each of those rays gets the hints of a group of WARP_SIZE / n lanes (n their count, rounded
-// up to a power of 2), each lane reading one brick. Hints are rewritten for every ray that asks at
-// once; every other ray's are dropped (their slots are rewritten). The barrier before the reads
-// orders them after the rays' writes (marchWarp's start) and the writes after the last round's
-// reads of the hints; the one after the writes orders them before the seeks'.
-template <class Access>
-__device__ void fillSeekHints(const Lod& lod, const RayState& s, Access& access, bool seeking,
-                              WarpMarchShared& shared, int lane) {
-  if constexpr (requires { access.peekHint(0, Vec3i{0, 0, 0}); }) {
-    bool asks = seeking && access.asksHints(s);
-    unsigned asking = __ballot_sync(FULL_WARP, asks);
-    int n = __popc(asking);
-    if (!__any_sync(FULL_WARP, asks && !access.hintsCover(s.level, s.step)) ||
-        n * HINT_MIN_LANES > WARP_SIZE)
-      return;
-    int lanes = WARP_SIZE >> (32 - __clz(n - 1)), group = lane / lanes;
-    int owner = group < n ? static_cast<int>(__fns(asking, 0, group + 1)) : 0;
-    int level = __shfl_sync(FULL_WARP, s.level, owner),
-        step = __shfl_sync(FULL_WARP, s.step, owner);
-    __syncwarp();
-    SeekHint h{NO_HINT, 0u, 0};
-    if (group < n) h = seekHintOf(access, shared.rays[owner], lod, level, step, lane % lanes);
-    shared.hints[lane] = h;
-    __syncwarp();
-    int rank = __popc(asking & ((1u << lane) - 1u));
-    access.takeHints(asks ? &shared.hints[rank * lanes] : nullptr, s.level, s.step, lanes);
-  }
 }
 
 // How long marchWarp marches: until every ray of the warp has finished or stopped (sp, graph),
@@ -100,7 +67,6 @@ __device__ MarchResult marchWarp(const Ray& ray, const Lod& lod, RayState& s, Ac
   bool done = !active, due = false;
   for (;;) {
     bool stopped = false;
-    fillSeekHints(lod, s, access, !done && !due, shared, lane);
     if (!done && !due) {
       Seek k = m.seek();
       due = k == Seek::Due;
