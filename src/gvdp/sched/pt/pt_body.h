@@ -335,28 +335,17 @@ struct StartAhead {
 // 4% slower, 32 +5.5%; 4 claims a ray instead of 8, less in both.
 constexpr uint32_t PT_PREFETCH_BRICKS = 64;
 
-// The prefetch's grids of rays: the centres of its stride^2 pixels, then (stride 2 or more) their
-// corners, taken only once every centre is: in a frame's tail, when the first grid's rays are all
-// taken (perlin's frame 12: 350 us before its end, H200, BENCHMARKS.md session 36).
-constexpr uint32_t prefetchGrids(uint32_t stride) {
-  return stride >= 2 ? 2u : 1u;
-}
-
-// Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre (or the
-// corner: prefetchGrids) of its prefetchStride^2 pixels, marched from its start as a lookahead
-// (cache/lookahead.h: coarser stand-ins, no waiting, no timestamp, nothing composited).
+// Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre of its
+// prefetchStride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: coarser
+// stand-ins, no waiting, no timestamp, nothing composited).
 template <class Pool>
 GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
   const FrameSetup& f = ctx.prefetchFrame;
-  uint32_t s = ctx.prefetchStride;
-  uint32_t grids = prefetchGrids(s), cells = ctx.prefetchItems / grids;
-  uint32_t grid = item / cells;
-  item -= grid * cells;
-  uint32_t rows = cells / ctx.prefetchColumns;
+  uint32_t rows = ctx.prefetchItems / ctx.prefetchColumns;
   uint32_t column = item % ctx.prefetchColumns, row = item / ctx.prefetchColumns;
   row = static_cast<uint32_t>(uint64_t{row} * ctx.prefetchRowStep % rows);
-  uint32_t at = grid == 0 ? s / 2 : 0;  // the second grid: the corners between the first's centres
-  int x = static_cast<int>(column * s + at), y = static_cast<int>(row * s + at);
+  uint32_t s = ctx.prefetchStride;
+  int x = static_cast<int>(column * s + s / 2), y = static_cast<int>(row * s + s / 2);
   Ray ray = f.primaryRay(x < f.width ? x : f.width - 1, y < f.height ? y : f.height - 1);
   lookAhead<PoolReads::Coherent>(ray, f.lod, initialRayState(), ctx.cache, pool,
                                  StartAhead::prefetch(ctx), PT_PREFETCH_BRICKS);
@@ -737,7 +726,7 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
   uint32_t step = static_cast<uint32_t>(0.618 * rows) | 1u;
   while (std::gcd(step, rows) != 1) step += 2;
   ctx.prefetchColumns = columns;
-  ctx.prefetchItems = columns * rows * prefetchGrids(stride);
+  ctx.prefetchItems = columns * rows;
   ctx.prefetchRowStep = step % rows;
 }
 
