@@ -7,6 +7,7 @@ the share of SM-time busy (any record open), with each kind of record, and the r
 spans) of each kind open in the bin.
 
 Usage: scripts/timeline_tail.py TRACE.json [--tail US] [--bin US] [--sms N]
+A trace it cannot read, or one without records, is a one-line error with exit status 2.
 """
 import argparse
 import json
@@ -24,6 +25,11 @@ def union_length(spans, lo, hi):
     return total
 
 
+def fail(message):
+    print(f"timeline_tail: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("trace")
@@ -32,13 +38,16 @@ def main():
     ap.add_argument("--sms", type=int, default=0, help="SMs (default: the trace's thread names)")
     a = ap.parse_args()
     try:
-        events = json.load(open(a.trace))["traceEvents"]
-    except (OSError, ValueError, KeyError) as e:
-        sys.exit(f"timeline_tail: cannot read trace '{a.trace}': {e}")
-    sms = a.sms or sum(1 for e in events if e.get("ph") == "M" and e.get("name") == "thread_name")
-    recs = [(e["tid"], e["ts"], e["ts"] + e["dur"], e["cat"]) for e in events if e.get("ph") == "X"]
-    if not recs or sms == 0:
-        sys.exit(f"timeline_tail: no records or SMs in '{a.trace}'")
+        with open(a.trace) as f:
+            events = json.load(f)["traceEvents"]
+        sms = a.sms or sum(
+            1 for e in events if e.get("ph") == "M" and e.get("name") == "thread_name")
+        recs = [(e["tid"], e["ts"], e["ts"] + e["dur"], e["cat"]) for e in events
+                if e.get("ph") == "X"]
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as e:
+        fail(f"cannot read trace '{a.trace}': {e!r}")
+    if not recs or sms == 0 or not any(r[3] == "render" for r in recs):
+        fail(f"no render records or SMs in trace '{a.trace}'")
     t0, t1 = min(r[1] for r in recs), max(r[2] for r in recs)
     worker = [r for r in recs if r[3] in ("render", "production", "prefetch")]
     first = min(r[1] for r in worker if r[3] == "render")
@@ -79,4 +88,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except BrokenPipeError:  # a reader that took what it wanted (| head)
+        sys.stderr.close()
