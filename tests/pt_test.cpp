@@ -127,8 +127,12 @@ PrefetchCounts expectPrefetchChangesNoImage(Backend backend, const std::string& 
     EXPECT_LE(s.cache.prefetchUnused, f ? pt.stats[f - 1].cache.prefetched : 0u)
         << "only the last frame's prefetched bricks go unused in this one";
     EXPECT_LE(s.cache.prefetchUnused, s.cache.unsampled) << "unused prefetches are over-production";
+    EXPECT_LE(s.prefetchRays, s.prefetchItems) << "rays marched of those offered";
     if (f == 0) {
       EXPECT_EQ(s.prefetchClaims, 0u) << "no frame before the first to predict from";
+      EXPECT_EQ(s.prefetchItems, 0u);
+    } else {
+      EXPECT_GT(s.prefetchItems, 0u) << "a moving camera's frame offers the next one's rays";
     }
     c.claims += s.prefetchClaims;
     if (f + 1 < frames) c.prefetched += s.cache.prefetched;

@@ -63,6 +63,8 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"relaunched_rays", f.relaunchedRays},
                     {"lookahead_claims", f.lookaheadClaims},
                     {"prefetch_claims", f.prefetchClaims},
+                    {"prefetch_rays", f.prefetchRays},
+                    {"prefetch_items", f.prefetchItems},
                     {"bricks_prefetched", f.cache.prefetched},
                     {"prefetched_unused", f.cache.prefetchUnused},
                     {"tiles", f.tiles},

@@ -101,6 +101,8 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   total.relaunchedRays += t.relaunchedRays;
   total.lookaheadClaims += t.lookaheadClaims;
   total.prefetchClaims += t.prefetchClaims;
+  total.prefetchRays += t.prefetchRays;
+  total.prefetchItems += t.prefetchItems;
   total.lodBias = std::max(total.lodBias, t.lodBias);
   total.tilePlans += t.tilePlans;
   total.planMs += t.planMs;

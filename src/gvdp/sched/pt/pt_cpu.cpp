@@ -49,6 +49,8 @@ class PtCpu final : public SpFrameCpu {
     stats.prefetchClaims = *ctx.counter(PT_PREFETCHES);
     stats.unfinishedPixels = std::max<int64_t>(stats.unfinishedPixels, *ctx.counter(PT_LIVE_RAYS));
     lastPrefetch_ = prefetchYield(counters_.data(), ctx.prefetchItems);
+    stats.prefetchRays = lastPrefetch_.rays;
+    stats.prefetchItems = ctx.prefetchItems;
     previous_ = f;
   }
 

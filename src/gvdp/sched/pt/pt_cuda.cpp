@@ -70,6 +70,8 @@ class PtCuda final : public SpFrameCuda {
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
     lastPrefetch_ = prefetchYield(c.data(), prefetchItems_);
+    stats.prefetchRays = lastPrefetch_.rays;
+    stats.prefetchItems = prefetchItems_;
   }
 
   void resize(const FrameSetup& f) {
