@@ -27,6 +27,19 @@ __device__ inline bool reserveLaunch(const DpContext* ctx) {
   return atomicAdd(&ctx->counters[DP_RESERVED], 1u) < ctx->launchAllowance;
 }
 
+// A device-side launch within the allowance: reserved, launched, checked, and counted as `counted`
+// or as a launch failure; false when refused (by the allowance or by the runtime).
+template <class Launch>
+__device__ bool launchReserved(const DpContext* ctx, DpCounter counted, Launch launch) {
+  bool launched = reserveLaunch(ctx);
+  if (launched) {
+    launch();
+    launched = cudaGetLastError() == cudaSuccess;
+  }
+  atomicAdd(&ctx->counters[launched ? counted : DP_LAUNCH_FAILURES], 1u);
+  return launched;
+}
+
 template <class P>
 __global__ void dpProduceKernel(const DpContext* ctx, P producer, BrickKey key, int depth);
 template <class P>
@@ -44,18 +57,11 @@ struct GpuLauncher {
       atomicAdd(&ctx->counters[DP_DEFERRED], 1u);
       return;
     }
-    bool launched = reserveLaunch(ctx);
-    if (launched) {
-      dpProduceKernel<<<1, PRODUCE_BLOCK, 0, cudaStreamFireAndForget>>>(ctx, producer, key,
-                                                                        depth + 1);
-      launched = cudaGetLastError() == cudaSuccess;
-    }
-    if (launched) {
-      atomicAdd(&ctx->counters[DP_PRODUCTIONS], 1u);
-    } else {  // refused: the brick is MISSING again; its rays are left to the sweep
-      storeRelease32(entry, ENTRY_MISSING);
-      atomicAdd(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
-    }
+    if (!launchReserved(ctx, DP_PRODUCTIONS, [&] {
+          dpProduceKernel<<<1, PRODUCE_BLOCK, 0, cudaStreamFireAndForget>>>(ctx, producer, key,
+                                                                            depth + 1);
+        }))
+      storeRelease32(entry, ENTRY_MISSING);  // refused: MISSING again, its rays left to the sweep
   }
 
   __device__ void relaunch(const PixelRect& r) const {
@@ -67,15 +73,9 @@ struct GpuLauncher {
     dim3 block(DP_RELAUNCH_BLOCK, DP_RELAUNCH_BLOCK);
     dim3 grid((r.width() + DP_RELAUNCH_BLOCK - 1) / DP_RELAUNCH_BLOCK,
               (r.height() + DP_RELAUNCH_BLOCK - 1) / DP_RELAUNCH_BLOCK);
-    bool launched = reserveLaunch(ctx);
-    if (launched) {
+    launchReserved(ctx, DP_RELAUNCHES, [&] {
       dpRenderRectKernel<<<grid, block, 0, cudaStreamFireAndForget>>>(ctx, producer, r, depth + 1);
-      launched = cudaGetLastError() == cudaSuccess;
-    }
-    if (launched)
-      atomicAdd(&ctx->counters[DP_RELAUNCHES], 1u);
-    else
-      atomicAdd(&ctx->counters[DP_LAUNCH_FAILURES], 1u);
+    });
   }
 };
 
