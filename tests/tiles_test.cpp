@@ -106,6 +106,51 @@ TEST(TiledCpu, TilesUnderASmallPoolEqualTheFramesOfALargePool) {
     tilesEqualALargePool(Backend::Cpu, k, 600, 2, 96, 60);
 }
 
+// A sequence's frames start from the tiles the last ones kept (TileMemory), and a fresh start
+// now and then: the same images as a large pool's, and fewer renders discarded than frames that
+// each start from the whole image.
+TEST(TiledCpu, FramesStartFromTheTilesTheLastOnesKept) {
+  constexpr int FRAMES = 12, W = 96, H = 60;
+  SequenceOptions o;
+  o.scene = "forest";
+  o.frames = FRAMES;
+  o.width = W;
+  o.height = H;
+  o.movement = Movement::Backward;
+  o.scheduler = {Backend::Cpu, SchedulerKind::Sp, 600};
+  Renders remembered = test::renderRun(o);
+  Renders large =
+      run("forest", Backend::Cpu, SchedulerKind::Sp, 0, {}, FRAMES, W, H, Movement::Backward);
+  std::unique_ptr<Scheduler> scheduler = test::schedulerFor(o);
+  int splits = 0, freshSplits = 0;
+  std::string perFrame;
+  for (int f = 0; f < FRAMES; ++f) {
+    Image fresh;
+    FrameStats s = renderTiled(*scheduler, frameOf(o, f), fresh, o.tiles, 600);
+    const FrameStats& r = remembered.stats[f];
+    EXPECT_EQ(fresh.pixels, large.images[f].pixels) << "frame " << f;
+    EXPECT_EQ(remembered.images[f].pixels, large.images[f].pixels) << "frame " << f;
+    EXPECT_FALSE(r.degraded);
+    EXPECT_EQ(r.unfinishedPixels, 0);
+    EXPECT_GT(s.tileSplits, 0) << "frame " << f << ": the whole image overflows";
+    if (f >= 1 && f <= 4) {
+      EXPECT_GT(r.tiles, 1) << "frame " << f << " starts from tiles";
+    }
+    if (f == 0 || f == 5) {
+      EXPECT_GT(r.tileSplits, 0) << "frame " << f << " starts afresh";
+    }
+    splits += r.tileSplits;
+    freshSplits += s.tileSplits;
+    perFrame += ' ';
+    perFrame += std::to_string(r.tileSplits);
+  }
+  EXPECT_LT(2 * splits, freshSplits);
+  std::printf(
+      "[ measure ] forest backward %dx%d pool 600, sp cpu: %d renders discarded "
+      "(per frame:%s), %d when every frame starts from the whole image\n",
+      W, H, splits, perFrame.c_str(), freshSplits);
+}
+
 TEST(TiledCpu, AGridOfTilesRendersTheSameImage) {
   TileOptions grid;
   grid.mode = TileOptions::Mode::Grid;

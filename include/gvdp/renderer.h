@@ -101,6 +101,7 @@ class Renderer {
   float voxelSize0_;
   std::unique_ptr<detail::Scheduler> scheduler_;
   TileProgress tileProgress_;
+  detail::TileMemory tileMemory_;  // the tiles the last frames kept
   int frames_ = 0;
 };
 

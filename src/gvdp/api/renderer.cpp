@@ -64,7 +64,7 @@ FrameSetup Renderer::frameAt(const CameraPose& pose) const {
 
 FrameStats Renderer::render(const CameraPose& pose, Image& out) {
   FrameStats stats = renderTiled(*scheduler_, frameAt(pose), out, options_.tiles,
-                                 options_.scheduler.poolBricks, tileProgress_);
+                                 options_.scheduler.poolBricks, tileProgress_, &tileMemory_);
   ++frames_;
   return stats;
 }

@@ -179,8 +179,35 @@ std::vector<PendingTile> planRegion(const Scheduler& scheduler, const FrameSetup
 
 }  // namespace
 
+namespace {
+
+// Whether the frame starts from `memory`'s tiles (false: afresh), counting the frame.
+bool startsFromMemory(TileMemory& memory, const FrameSetup& frame) {
+  if (memory.width != frame.width || memory.height != frame.height) memory = {};
+  if (memory.tiles.empty() || memory.left == 0) return false;
+  --memory.left;
+  return true;
+}
+
+// `memory` after a frame that started from it (`remembered`) or afresh, `splits` of its renders
+// discarded, `kept` its tiles.
+void remember(TileMemory& memory, const FrameSetup& frame, bool remembered, int splits,
+              std::vector<PixelTile> kept) {
+  memory.width = frame.width;
+  memory.height = frame.height;
+  if (!remembered) {
+    memory.period = splits == 0 ? 0 : std::min(std::max(2 * memory.period, 4), MAX_TILE_REUSE);
+    memory.left = memory.period;
+  }
+  if (memory.period == 0) kept.clear();
+  memory.tiles = std::move(kept);
+}
+
+}  // namespace
+
 FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out,
-                       const TileOptions& o, uint64_t poolBricks, const TileProgress& progress) {
+                       const TileOptions& o, uint64_t poolBricks, const TileProgress& progress,
+                       TileMemory* memory) {
   bool split = o.mode != TileOptions::Mode::Off;
   bool plans = split && o.plan && poolBricks > 0;
   FrameStats total;
@@ -190,8 +217,11 @@ FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out
   // its plan or its quadrants. The whole image renders into `out` itself: a frame that fits
   // costs nothing more.
   std::vector<PendingTile> todo;
-  std::vector<PixelTile> initial = initialTiles(frame.width, frame.height, o);
-  for (auto it = initial.rbegin(); it != initial.rend(); ++it) todo.push_back({*it, false});
+  const bool remembered = memory && split && startsFromMemory(*memory, frame);
+  std::vector<PixelTile> initial =
+      remembered ? memory->tiles : initialTiles(frame.width, frame.height, o);
+  for (auto it = initial.rbegin(); it != initial.rend(); ++it) todo.push_back({*it, remembered});
+  std::vector<PixelTile> kept;
   int done = 0;
   Image image;
   while (!todo.empty()) {
@@ -225,9 +255,11 @@ FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out
     }
     ++total.tiles;
     ++done;
+    kept.push_back(t);
     addTileStats(total, s);
     if (progress) progress(done, done + static_cast<int>(todo.size()));
   }
+  if (memory && split) remember(*memory, frame, remembered, total.tileSplits, std::move(kept));
   return total;
 }
 

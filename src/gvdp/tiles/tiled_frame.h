@@ -57,13 +57,30 @@ std::vector<PixelTile> splitTile(const PixelTile& tile);
 // What renderTiled did, in FrameStats::tiles / tileSplits (called after each finished tile).
 using TileProgress = std::function<void(int tilesDone, int tilesKnown)>;
 
+// The tiles a sequence's last frames kept, so that the next frame starts from them rather than
+// from the whole image: a render that overflows is discarded whole (its rays all marched, its
+// bricks produced), and the camera's next frame most likely overflows the same way. After a
+// frame that started afresh and split, the next `period` frames start from the tiles kept (each
+// frame's own, so they follow the camera); then a frame starts afresh again, and the period
+// doubles while that one splits too (up to MAX_TILE_REUSE), and ends when it does not. Starting
+// tiles change what is rendered, never the image: a tile's rays are the image's, bit for bit.
+struct TileMemory {
+  std::vector<PixelTile> tiles;  // empty: start afresh
+  int width = 0, height = 0;     // the frame they tile
+  int left = 0;                  // frames still to start from them
+  int period = 0;                // frames between fresh starts (0: none split)
+};
+
+constexpr int MAX_TILE_REUSE = 64;
+
 // Renders `frame` (a whole image) with `scheduler`, whose pool holds `poolBricks` (0: none, no
 // plans), into `out`: one render when the plan is one tile and it does not overflow (no copy),
-// else tile by tile. The statistics are the tiles' sums (time, counts; the plans' time too),
-// degraded when a kept tile is.
+// else tile by tile, from the tiles in `memory` when it has some for this frame (then updated).
+// The statistics are the tiles' sums (time, counts; the plans' time too), degraded when a kept
+// tile is.
 FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out,
                        const TileOptions& options, uint64_t poolBricks,
-                       const TileProgress& progress = {});
+                       const TileProgress& progress = {}, TileMemory* memory = nullptr);
 
 // Adds a tile's statistics to a frame's.
 void addTileStats(FrameStats& total, const FrameStats& tile);
