@@ -44,11 +44,11 @@ struct FrameStats {
   uint64_t prefetchClaims = 0;   // pt: bricks claimed for the next frame (idle-time prefetch)
   uint64_t prefetchRays = 0;     // pt: the prefetch's rays marched, of prefetchItems offered
   uint64_t prefetchItems = 0;
-  int tiles = 1;                 // tiles the image was rendered as (tiles/tiled_frame.h)
-  int tileSplits = 0;            // renders replaced by tiles (the pool overflowed)
-  int tilePlans = 0;             // importance pre-passes run to plan tiles (tiles/tile_plan.h)
-  double planMs = 0.0;           // their time (pre-pass and subdivision; included in ms)
-  int lodBias = 0;               // a degraded frame's coarser LOD (tiles/tiled_frame.h)
+  int tiles = 1;        // tiles the image was rendered as (tiles/tiled_frame.h)
+  int tileSplits = 0;   // renders replaced by tiles (the pool overflowed)
+  int tilePlans = 0;    // importance pre-passes run to plan tiles (tiles/tile_plan.h)
+  double planMs = 0.0;  // their time (pre-pass and subdivision; included in ms)
+  int lodBias = 0;      // a degraded frame's coarser LOD (tiles/tiled_frame.h)
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline
 };
