@@ -177,10 +177,6 @@ std::vector<PendingTile> planRegion(const Scheduler& scheduler, const FrameSetup
   return tiles;
 }
 
-}  // namespace
-
-namespace {
-
 // Whether the frame starts from `memory`'s tiles (false: afresh), counting the frame.
 bool startsFromMemory(TileMemory& memory, const FrameSetup& frame) {
   if (memory.width != frame.width || memory.height != frame.height) memory = {};

@@ -8,6 +8,7 @@
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/pt/pt_body.h"
+#include "gvdp/sched/pt/pt_stats.h"
 #include "gvdp/sched/sp/sp_loop_cpu.h"
 
 namespace gvdp::detail {
@@ -43,14 +44,7 @@ class PtCpu final : public SpFrameCpu {
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
-    stats.launches = *ctx.counter(PT_PRODUCTIONS) + *ctx.counter(PT_RENDER_TASKS);
-    stats.relaunchedRays = *ctx.counter(PT_RELAUNCHED);
-    stats.lookaheadClaims = *ctx.counter(PT_LOOKAHEAD);
-    stats.prefetchClaims = *ctx.counter(PT_PREFETCHES);
-    stats.unfinishedPixels = std::max<int64_t>(stats.unfinishedPixels, *ctx.counter(PT_LIVE_RAYS));
-    lastPrefetch_ = prefetchYield(counters_.data(), ctx.prefetchItems);
-    stats.prefetchRays = lastPrefetch_.rays;
-    stats.prefetchItems = ctx.prefetchItems;
+    lastPrefetch_ = addPtStats(counters_.data(), ctx.prefetchItems, stats);
     previous_ = f;
   }
 

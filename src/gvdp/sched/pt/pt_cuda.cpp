@@ -5,6 +5,7 @@
 #include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/pt/pt_cuda.h"
+#include "gvdp/sched/pt/pt_stats.h"
 #include "gvdp/sched/sp/sp_cuda.h"
 #include "gvdp/sched/sp/sp_loop_cuda.h"
 
@@ -61,17 +62,9 @@ class PtCuda final : public SpFrameCuda {
     SpFrameCuda::finishFrame(f, out, stats);
     std::vector<uint32_t> c(counters_.size());
     readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
-    stats.launches = c[PT_PRODUCTIONS * PT_COUNTER_STRIDE] + c[PT_RENDER_TASKS * PT_COUNTER_STRIDE];
-    stats.relaunchedRays = c[PT_RELAUNCHED * PT_COUNTER_STRIDE];
-    stats.lookaheadClaims = c[PT_LOOKAHEAD * PT_COUNTER_STRIDE];
-    stats.prefetchClaims = c[PT_PREFETCHES * PT_COUNTER_STRIDE];
-    stats.unfinishedPixels =
-        std::max<int64_t>(stats.unfinishedPixels, c[PT_LIVE_RAYS * PT_COUNTER_STRIDE]);
+    lastPrefetch_ = addPtStats(c.data(), prefetchItems_, stats);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
-    lastPrefetch_ = prefetchYield(c.data(), prefetchItems_);
-    stats.prefetchRays = lastPrefetch_.rays;
-    stats.prefetchItems = prefetchItems_;
   }
 
   void resize(const FrameSetup& f) {
