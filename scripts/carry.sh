@@ -22,8 +22,9 @@ for spec in "$@"; do
   [ "$name" != "$spec" ] && [ -f "$path" ] || { echo "$0: not NAME=FILE: '$spec'" >&2; exit 2; }
   mkdir -p "$stage/$name"
   objcopy --remove-section __nv_relfatbin "$path" "$stage/$name/$(basename "$path")"
+  # (a binary that needs none of them is fine: grep then matches nothing)
   ldd "$path" | awk '$3 ~ /^\// {print $3}' |
-    grep -Ev '/(libc|libm|libstdc\+\+|libgcc_s|ld-linux[^/]*)\.so' |
+    { grep -Ev '/(libc|libm|libstdc\+\+|libgcc_s|ld-linux[^/]*)\.so' || true; } |
     while read -r lib; do cp -Lu "$lib" "$stage/lib/"; done
 done
 mkdir -p "$(dirname "$archive")"
