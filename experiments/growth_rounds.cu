@@ -25,19 +25,19 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "experiment_main.h"
 #include "gvdp/base/clock.h"
 #include "gvdp/base/cooperation.h"
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/cache/clipmap.h"
 #include "gvdp/cache/produce.h"
+#include "gvdp/mesh/text_tokens.h"
 #include "gvdp/render/frame.h"
 #include "gvdp/world/registry.h"
 
@@ -183,33 +183,25 @@ struct Run {
 
 int run(int argc, char** argv) {
   int bricks = 64, launches = 24, crowdWarps = 7, blocks = 1;
+  struct Option {
+    const char* name;
+    int* value;
+    int64_t lo, hi;
+  };
+  const Option options[] = {{"--bricks", &bricks, 2, 4096},
+                            {"--launches", &launches, 1, 1000},
+                            {"--crowd", &crowdWarps, 1, 7},
+                            {"--blocks", &blocks, 1, 100000}};
   for (int i = 1; i < argc; ++i) {
-    auto value = [&](const char* flag) {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "gvdp_growth_rounds: %s needs a value\n", flag);
-        std::exit(2);
-      }
-      return std::atoi(argv[++i]);
-    };
-    if (!std::strcmp(argv[i], "--bricks")) {
-      bricks = value("--bricks");
-    } else if (!std::strcmp(argv[i], "--launches")) {
-      launches = value("--launches");
-    } else if (!std::strcmp(argv[i], "--crowd")) {
-      crowdWarps = value("--crowd");
-    } else if (!std::strcmp(argv[i], "--blocks")) {
-      blocks = value("--blocks");
-    } else {
-      std::fprintf(stderr, "gvdp_growth_rounds: unknown option '%s'\n", argv[i]);
-      return 2;
-    }
-  }
-  if (bricks < 2 || bricks > 4096 || launches < 1 || launches > 1000 || crowdWarps < 1 ||
-      crowdWarps > 7 || blocks < 1 || blocks > 100000) {
-    std::fprintf(stderr,
-                 "gvdp_growth_rounds: --bricks 2..4096, --launches 1..1000, --crowd 1..7, --blocks "
-                 "1..100000\n");
-    return 2;
+    auto o = std::find_if(std::begin(options), std::end(options),
+                          [&](const Option& opt) { return !std::strcmp(argv[i], opt.name); });
+    if (o == std::end(options)) throw InputError(concat("unknown option '", argv[i], "'"));
+    if (++i == argc) throw InputError(concat(o->name, " needs a value"));
+    int64_t v = 0;
+    if (!parseInt(argv[i], v) || v < o->lo || v > o->hi)
+      throw InputError(
+          concat("bad ", o->name, " '", argv[i], "' (expected ", o->lo, "..", o->hi, ")"));
+    *o->value = static_cast<int>(v);
   }
   const char* names[] = {"perlin", "fbm", "forest", "random-spheres", "aligned-spheres"};
   std::vector<Run> runs;
@@ -303,10 +295,5 @@ int run(int argc, char** argv) {
 }  // namespace gvdp::detail
 
 int main(int argc, char** argv) {
-  try {
-    return gvdp::detail::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "gvdp_growth_rounds: %s\n", e.what());
-    return 2;
-  }
+  return gvdp::detail::experimentMain("gvdp_growth_rounds", gvdp::detail::run, argc, argv);
 }

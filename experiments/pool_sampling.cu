@@ -22,8 +22,10 @@
 #include <string>
 #include <vector>
 
+#include "experiment_main.h"
 #include "gvdp/base/image.h"
 #include "gvdp/bench/sequence.h"
+#include "gvdp/mesh/text_tokens.h"
 #include "gvdp/sched/builtin_producer.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/sp/sp_cuda.h"
@@ -54,9 +56,14 @@ struct TexturePool {
   }
 
   // Voxel index i of the brick at `origin` is texel block + 1 + (i - origin), whose centre is
-  // at texel coordinate + 0.5, as voxel i's is at v = i + 0.5.
+  // at texel coordinate + 0.5, as voxel i's is at v = i + 0.5. A sample in a clear cell of
+  // `cells` is zero without a fetch, as the array's (BrickPool::sample).
   template <PoolReads>
-  __device__ Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v) const {
+  __device__ Vec4f sample(uint32_t slot, Vec3i origin, Vec3f v, uint64_t cells) const {
+    Vec3i first = trilinearSite(v).first;
+    if (!(cells & occupancyBitOfBlock(
+                      {first.x - origin.x + 1, first.y - origin.y + 1, first.z - origin.z + 1})))
+      return {0.0f, 0.0f, 0.0f, 0.0f};
     Vec3i b = grid.block(slot);
     Vec3f shift{static_cast<float>(b.x + 1 - origin.x), static_cast<float>(b.y + 1 - origin.y),
                 static_cast<float>(b.z + 1 - origin.z)};
@@ -137,7 +144,7 @@ class SamplingExperiment final : public SpFrameCuda {
   void renderFrame(const FrameSetup& f, Image&, FrameStats& stats) override {
     cache_.beginFrame(f);
     runSpLoopCuda(f, cudaProducer(), cache_, buffers_, 0, true, stats, stream());
-    stats.unfinishedPixels = resolveCuda(f, buffers_, stream());
+    resolveCuda(f, buffers_, stream());  // its unfinished pixels counted by finishFrame
   }
 
   void copyPool() {
@@ -241,9 +248,15 @@ class SamplingExperiment final : public SpFrameCuda {
 int run(int argc, char** argv) {
   SequenceOptions o;
   o.scene = argc > 1 ? argv[1] : "perlin";
-  o.width = argc > 2 ? std::stoi(argv[2]) : 1500;
-  o.height = argc > 3 ? std::stoi(argv[3]) : 1000;
-  int at = argc > 4 ? std::stoi(argv[4]) : 30;
+  auto number = [&](int i, const char* name, int fallback, int64_t lo) {
+    int64_t v = fallback;
+    if (argc > i && (!parseInt(argv[i], v) || v < lo || v > 100000))
+      throw InputError(concat("bad ", name, " '", argv[i], "' (expected ", lo, "..100000)"));
+    return static_cast<int>(v);
+  };
+  o.width = number(2, "width", 1500, 1);
+  o.height = number(3, "height", 1000, 1);
+  int at = number(4, "frame", 30, 0);
   o.scheduler.backend = Backend::Cuda;
   o.scheduler = resolvedOptions(o.scheduler);
   validate(o);
@@ -272,10 +285,5 @@ int run(int argc, char** argv) {
 }  // namespace gvdp::detail
 
 int main(int argc, char** argv) {
-  try {
-    return gvdp::detail::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "gvdp_pool_sampling: %s\n", e.what());
-    return 2;
-  }
+  return gvdp::detail::experimentMain("gvdp_pool_sampling", gvdp::detail::run, argc, argv);
 }

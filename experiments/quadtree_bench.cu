@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment_main.h"
 #include "gvdp/base/cuda_util.h"
 #include "gvdp/tiles/quadtree.h"
 
@@ -273,13 +274,5 @@ int run(int argc, char** argv) {
 }  // namespace gvdp::detail
 
 int main(int argc, char** argv) {
-  try {
-    return gvdp::detail::run(argc, argv);
-  } catch (const gvdp::InputError& e) {
-    std::fprintf(stderr, "gvdp_quadtree_bench: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "gvdp_quadtree_bench: %s\n", e.what());
-    return 1;
-  }
+  return gvdp::detail::experimentMain("gvdp_quadtree_bench", gvdp::detail::run, argc, argv);
 }
