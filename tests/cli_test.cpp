@@ -9,6 +9,7 @@
 #include "gvdp/base/error.h"
 #include "gvdp/io/video.h"
 #include "gvdp/sched/graph/graph.h"
+#include "gvdp/sched/pt/pt.h"
 #include "test_util.h"
 
 namespace gvdp::detail {
@@ -365,6 +366,27 @@ TEST(Cli, GraphLoopEnvironmentIsCheckedByName) {
   unsetenv("GVDP_GRAPH_LOOP");
   EXPECT_EQ(graphDriverFromEnvironment(), GraphDriver::Device);
   if (before) setenv("GVDP_GRAPH_LOOP", saved.c_str(), 1);
+}
+
+// GVDP_PT_PRODUCER_SHARE turns on pt's producer SMs; anything but an integer 0..4096 is an error.
+TEST(Cli, PtProducerShareEnvironmentIsChecked) {
+  const char* before = std::getenv("GVDP_PT_PRODUCER_SHARE");
+  std::string saved = before ? before : "";
+  for (const char* bad : {"two", "-2", "4097", "2x", " 2"}) {
+    setenv("GVDP_PT_PRODUCER_SHARE", bad, 1);
+    EXPECT_THROW(ptProducerShareFromEnvironment(), InputError) << bad;
+  }
+  setenv("GVDP_PT_PRODUCER_SHARE", "2", 1);
+  EXPECT_EQ(ptProducerShareFromEnvironment(), 2u);
+  unsetenv("GVDP_PT_PRODUCER_SHARE");
+  EXPECT_EQ(ptProducerShareFromEnvironment(), 0u);
+  // Checked before the frame's work, by name, for pt only (the CPU ignores it).
+  setenv("GVDP_PT_PRODUCER_SHARE", "two", 1);
+  const std::string out = " --out " + test::tempDir("cli_producer_share");
+  expectInputError("render --backend cpu --scheduler pt" + TINY + out,
+                   "bad GVDP_PT_PRODUCER_SHARE 'two' (expected 0..4096; 0: off)");
+  unsetenv("GVDP_PT_PRODUCER_SHARE");
+  if (before) setenv("GVDP_PT_PRODUCER_SHARE", saved.c_str(), 1);
 }
 
 }  // namespace gvdp::detail

@@ -18,6 +18,7 @@ struct ScriptedWorker {
   explicit ScriptedWorker(const PtContext& c) : ctx(c) {}
   const PtContext& ctx;
   bool helper = false;
+  bool rendering = true, taking = true;  // renders(), takesTasks()
   uint32_t tasks = 0, rays = 0, items = 0;
   uint32_t open = NO_PRODUCTION;
   uint32_t prefetchItems = 0;
@@ -50,6 +51,8 @@ struct ScriptedWorker {
   void render(const Batch&) { steps.push_back("render"); }
   uint32_t findProduction() const { return open; }
   bool helpsFirst() const { return helper; }
+  bool renders() const { return rendering; }
+  bool takesTasks() const { return taking; }
   void help(uint32_t owner) { steps.push_back("help " + std::to_string(owner)); }
   uint32_t claimPrefetch() { return prefetchItems > 0 ? (--prefetchItems, 0u) : ctx.prefetchItems; }
   void prefetch(uint32_t) { steps.push_back("prefetch"); }
@@ -136,6 +139,48 @@ TEST(PtWorkerLoop, WithNothingToTakeItHelpsThenPrefetchesThenIdles) {
               (Steps{"prefetch", "finish"}));
     EXPECT_EQ(run([&](ScriptedWorker& w) { w.helper = helper; }), (Steps{"idle", "finish"}));
   }
+}
+
+// A producer SM's warp (PtContext::producerSms) takes no rays, items or prefetch rays.
+TEST(PtWorkerLoop, AProducerOnlyProducesAndHelps) {
+  auto producer = [](ScriptedWorker& w) {
+    w.rendering = false;
+    w.helper = true;
+    w.rays = 32;
+    w.items = 1;
+    w.prefetchItems = 1;
+  };
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              producer(w);
+              w.tasks = 1;
+            }),
+            (Steps{"produce", "finish"}));
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              producer(w);
+              w.open = OWNER;
+            }),
+            (Steps{"help 7", "finish"}));
+  EXPECT_EQ(run(producer), (Steps{"idle", "finish"}));
+}
+
+// The other warps leave tasks and productions to the producers while any is in the loop.
+TEST(PtWorkerLoop, AWorkerThatLeavesTasksNeverProducesOrHelps) {
+  auto leaves = [](ScriptedWorker& w) {
+    w.taking = false;
+    w.tasks = 1;
+    w.open = OWNER;
+  };
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              leaves(w);
+              w.rays = 32;
+            }),
+            (Steps{"rays", "render", "finish"}));
+  EXPECT_EQ(run([&](ScriptedWorker& w) {
+              leaves(w);
+              w.prefetchItems = 1;
+            }),
+            (Steps{"prefetch", "finish"}));
+  EXPECT_EQ(run(leaves), (Steps{"idle", "finish"}));
 }
 
 TEST(PtWorkerLoop, RunsUntilNoWorkIsLive) {

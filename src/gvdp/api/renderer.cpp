@@ -4,6 +4,7 @@
 #include "gvdp/base/gpu.h"
 #include "gvdp/sched/builtin_producer.h"
 #include "gvdp/sched/graph/graph.h"
+#include "gvdp/sched/pt/pt.h"
 #include "gvdp/world/registry.h"
 
 namespace gvdp {
@@ -32,6 +33,7 @@ void validate(const RendererOptions& o) {
   GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
                    " (expected 1..150 degrees)");
   if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
+  if (o.scheduler.kind == SchedulerKind::Pt) ptProducerShareFromEnvironment();
 }
 
 namespace {

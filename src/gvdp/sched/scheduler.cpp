@@ -82,6 +82,16 @@ GraphDriver graphDriverFromEnvironment() {
   return value == "host" ? GraphDriver::Host : GraphDriver::Device;
 }
 
+uint32_t ptProducerShareFromEnvironment() {
+  const char* v = std::getenv("GVDP_PT_PRODUCER_SHARE");
+  if (v == nullptr || *v == '\0') return 0;
+  char* end = nullptr;
+  unsigned long s = std::strtoul(v, &end, 10);
+  GVDP_INPUT_CHECK(end != v && *end == '\0' && *v >= '0' && *v <= '9' && s <= 4096,
+                   "bad GVDP_PT_PRODUCER_SHARE '", v, "' (expected 0..4096; 0: off)");
+  return static_cast<uint32_t>(s);
+}
+
 namespace {
 std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options, ProducerKernelsPtr p) {
   requireBackend(options.backend);

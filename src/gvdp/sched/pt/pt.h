@@ -3,11 +3,17 @@
 // protocol on worker threads on the CPU (pt_body.h). No CDP, no pending-launch buffer.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "gvdp/sched/scheduler.h"
 
 namespace gvdp::detail {
+
+// GVDP_PT_PRODUCER_SHARE=S: the GPU's producer SMs, one per S productions of backlog
+// (pt_worker.cuh: roleNow; an experiment, off by default); unset or 0: none. Throws InputError
+// naming any value but an integer 0..4096.
+uint32_t ptProducerShareFromEnvironment();
 
 std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);

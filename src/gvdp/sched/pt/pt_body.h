@@ -77,6 +77,8 @@ enum PtCounter : int {
   PT_NEXT_PREFETCH,  // next prefetch ray
   PT_PREFETCHES,     // bricks claimed by the prefetch
   PT_OPEN,           // productions with chunks left for helpers (pt_worker.cuh: openProduction)
+  PT_EXITED,         // warps that left the loop (the GPU's producer SMs: pt_worker.cuh)
+  PT_IN_FLIGHT,      // production tasks taken and not ended (the same)
   PT_COUNTER_COUNT
 };
 
@@ -187,6 +189,7 @@ struct PtContext {
   uint32_t itemCount;         // items of the screen (tile_order.h: orderedItemCount)
   TileOrder tiles;            // their order (the GPU's; row-major on the CPU)
   PtProductions productions;  // the GPU's (pt_worker.cuh)
+  uint32_t producerShare;     // the GPU's producer SMs (pt_worker.cuh: roleNow); 0: none
 
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
 };
@@ -477,13 +480,14 @@ constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
 // PT_BATCH items of the screen (tile_order.h), until no ray or task of the frame is left; with none
 // of those, it helps an open production, else marches PT_BATCH prefetch rays, else idles. A GPU
 // warp of a helper SM (pt_worker.cuh: PT_HELPER_SMS) helps an open production before it takes
-// rays or items. Both kinds of rays are run at one call site (render), so that the march is
-// inlined once into the GPU kernel, and so are the samples of a production (help): a GPU warp's
-// produce opens its production, whose samples it computes in the next round as any helper does
-// (a second call site was a second copy of the producer in the worker: 54 KB of forest's SASS,
-// 17 KB of random-spheres'; once: 25 pt cells FPS x1.017, 1% lows x1.029, H100, BENCHMARKS.md
-// session 27). The Worker supplies the steps in its own scope (pt_cpu.cpp: a thread, whose
-// produce does the whole production; pt_worker.cuh: a warp):
+// rays or items; with producer SMs (pt_worker.cuh: roleNow), a warp of one only produces and the
+// others leave the productions to them (renders, takesTasks). Both kinds of rays are run at one
+// call site (render), so that the march is inlined once into the GPU kernel, and so are the samples
+// of a production (help): a GPU warp's produce opens its production, whose samples it computes in
+// the next round as any helper does (a second call site was a second copy of the producer in the
+// worker: 54 KB of forest's SASS, 17 KB of random-spheres'; once: 25 pt cells FPS x1.017, 1% lows
+// x1.029, H100, BENCHMARKS.md session 27). The Worker supplies the steps in its own scope
+// (pt_cpu.cpp: a thread, whose produce does the whole production; pt_worker.cuh: a warp):
 //   uint32_t liveWork()                                     the frame is over at 0
 //   uint32_t claim(const Ring&, uint32_t n, uint32_t* pos)  ringClaim, result given to the scope
 //   uint32_t producing()                                    its own open production (or none)
@@ -494,6 +498,8 @@ constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
 //   void render(const Batch&)                               runs a batch's rays
 //   uint32_t findProduction()                               one to help (NO_PRODUCTION: none)
 //   bool helpsFirst()                                       helps before it renders
+//   bool renders()                                          takes rays (false: only produces)
+//   bool takesTasks()                                       takes production tasks and helps
 //   void help(uint32_t owner)                               its samples; the end of its own
 //   uint32_t claimPrefetch()                                first, prefetchItems when none
 //   void prefetch(uint32_t first)                           prefetch rays first .. + PT_BATCH - 1
@@ -504,20 +510,23 @@ GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
     uint32_t position = 0;
     typename Worker::Batch batch;
     uint32_t production = w.producing();
+    const bool tasks = w.takesTasks();
     if (production == NO_PRODUCTION) {
-      if (w.claim(ctx.tasks, 1, &position)) {
+      if (tasks && w.claim(ctx.tasks, 1, &position)) {
         w.produce(position);
         continue;
       }
       if (w.helpsFirst()) production = w.findProduction();
     }
     if (production == NO_PRODUCTION) {
-      if (uint32_t n = w.claim(ctx.rays, PT_BATCH, &position)) {
+      const bool renders = w.renders();
+      uint32_t n = 0, first = ctx.itemCount, p = ctx.prefetchItems;
+      if (renders && (n = w.claim(ctx.rays, PT_BATCH, &position)) != 0) {
         batch = w.queued(position, n);
-      } else if (uint32_t first = w.claimFresh(); first < ctx.itemCount) {
+      } else if (renders && (first = w.claimFresh()) < ctx.itemCount) {
         batch = w.fresh(first);
-      } else if (production = w.findProduction(); production == NO_PRODUCTION) {
-        if (uint32_t p = w.claimPrefetch(); p < ctx.prefetchItems)
+      } else if (!tasks || (production = w.findProduction()) == NO_PRODUCTION) {
+        if (renders && (p = w.claimPrefetch()) < ctx.prefetchItems)
           w.prefetch(p);
         else
           w.idle();

@@ -129,6 +129,8 @@ class PtCpu final : public SpFrameCpu {
     static uint32_t producing() { return NO_PRODUCTION; }
     static uint32_t findProduction() { return NO_PRODUCTION; }
     static bool helpsFirst() { return false; }
+    static bool renders() { return true; }
+    static bool takesTasks() { return true; }
     static void help(uint32_t) {}
     uint32_t claimPrefetch() const { return claimPrefetchItems(ctx); }
     void prefetch(uint32_t first) const {

@@ -94,6 +94,7 @@ class PtCuda final : public SpFrameCuda {
     ctx.productions = {stage_.data(),        productionKey_.data(), words,
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
+    ctx.producerShare = producerShare_;
     ctx.tiles = tileOrder_.next(f, stream());
     launchPtFrameStart(ctx, layout_, ringsQuiet_, buffers_.counters.data() + 1, stream());
     ringsQuiet_ = false;  // until this frame's end says so
@@ -114,6 +115,7 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<uint32_t> productionCounters_;  // next, done, nonEmpty per worker; open bits
   PtLayout layout_{};
   bool ringsQuiet_ = false;  // the last frame left the rings as a frame starts them
+  uint32_t producerShare_ = ptProducerShareFromEnvironment();
 };
 
 }  // namespace

@@ -34,6 +34,8 @@ constexpr unsigned FULL_MASK = 0xffffffffu;
 // x1.060; a quarter of every SM's warps instead of a quarter of the SMs: x0.997 (BENCHMARKS.md,
 // session 33).
 constexpr uint32_t PT_HELPER_SMS = 4;
+// An idle warp's sleeps, ns: doubled from the shortest to the longest while it finds nothing.
+constexpr unsigned PT_SHORTEST_SLEEP = 32, PT_LONGEST_SLEEP = 1024;
 
 // Lane 0's open timeline span, kept in the warp's shared memory: in registers (with a copy of the
 // timeline's view) it was live across the march (80 registers: spill stores 784 -> 664 bytes).
@@ -304,6 +306,7 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
     atomicAdd(ctx.counter(PT_PRODUCTIONS), 1u);
+    atomicSub(ctx.counter(PT_IN_FLIGHT), 1u);
     endTask(ctx, id);
   }
 }
@@ -338,9 +341,10 @@ __device__ inline uint32_t openProduction(const PtProductions& pp, int lane) {
 }
 
 // One worker (a warp) of pt's loop (pt_body.h): every lane runs every step, lane 0 claims and
-// shares what it claimed. With nothing to take, or on a helper SM before it renders, the warp
-// helps a production (its block's first); with nothing to take, else it marches prefetch rays, or
-// sleeps with an exponential backoff.
+// shares what it claimed. With nothing to take, or on a helper or producer SM before it renders,
+// the warp helps a production (its block's first); with nothing to take, else it marches prefetch
+// rays, or sleeps with an exponential backoff. Its role (roleNow) is read with the live work at
+// the top of every round.
 template <class P>
 struct WarpWorker {
   const PtContext& ctx;
@@ -349,7 +353,10 @@ struct WarpWorker {
   int lane;
   WarpWorkerShared& shared;  // the warp's: little of the worker's own lives in registers across
                              // the march (WarpSpan)
-  unsigned backoff = 32;
+  unsigned backoff = PT_SHORTEST_SLEEP;  // ns
+  // Any: takes any work; Producer: only produces; LeavesTasks: renders, leaving the productions
+  // to the producer SMs (roleNow).
+  enum class Role : uint32_t { Any, Producer, LeavesTasks } role = Role::Any;
 
   // What lane 0 finds, for every lane.
   template <class F>
@@ -358,8 +365,15 @@ struct WarpWorker {
     if (lane == 0) v = f();
     return __shfl_sync(FULL_MASK, v, 0);
   }
-  __device__ uint32_t liveWork() const {
-    return fromLane0([&] { return loadRelaxed32(ctx.counter(PT_LIVE_WORK)); });
+  // The frame's live work; the warp's role for this round of the loop.
+  __device__ uint32_t liveWork() {
+    uint32_t live = 0, r = 0;
+    if (lane == 0) {
+      live = loadRelaxed32(ctx.counter(PT_LIVE_WORK));
+      r = static_cast<uint32_t>(roleNow());
+    }
+    role = static_cast<Role>(__shfl_sync(FULL_MASK, r, 0));
+    return __shfl_sync(FULL_MASK, live, 0);
   }
   __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
     return warpClaim(r, n, position, lane);
@@ -375,6 +389,7 @@ struct WarpWorker {
     id = __shfl_sync(FULL_MASK, id, 0);
     bool chunks = openProductionTask(ctx, producer, id, warp(), lane);
     if (lane == 0) {
+      atomicAdd(ctx.counter(PT_IN_FLIGHT), 1u);
       shared.ownTask = id;
       shared.ownChunks = chunks;
     }
@@ -410,7 +425,31 @@ struct WarpWorker {
     worked();
   }
   __device__ uint32_t findProduction() const { return openProduction(ctx.productions, lane); }
-  __device__ static bool helpsFirst() { return smId() % PT_HELPER_SMS == 0; }
+  // Producer SMs (opt-in: GVDP_PT_PRODUCER_SHARE, PtContext::producerShare = S): SMs 0 ..
+  // ceil(backlog / S) - 1, the backlog being the tasks queued and the productions taken and not
+  // ended, only produce; their warps help before anything else. Every SM's instruction caches
+  // then hold the production code or the march, not both (a growth round on one warp: 1.9 us
+  // alone, 34 us among 24 warps an SM of other code; session 38). The other warps leave tasks and
+  // productions to them, except a warp that has idled to its longest sleep (no SM id below the
+  // count may be running: ids are not guaranteed dense) or once a warp has left the loop (a
+  // prefetch's claim may come after the producers left: the last worker left takes any task).
+  // S = 2 on an H200: 25 pt cells FPS x1.070-1.071, 1% lows x1.019-1.026, floors x1.001-1.010,
+  // but the spike frames of random-spheres forward and aligned-spheres walkthrough slower
+  // (BENCHMARKS.md, session 39). Without it (S = 0, the default), helper SMs (PT_HELPER_SMS).
+  __device__ bool helpsFirst() const {
+    return ctx.producerShare != 0 ? role == Role::Producer : smId() % PT_HELPER_SMS == 0;
+  }
+  __device__ bool renders() const { return role != Role::Producer; }
+  __device__ bool takesTasks() const {
+    return role != Role::LeavesTasks || backoff == PT_LONGEST_SLEEP;
+  }
+  // Lane 0's: the warp's role this round.
+  __device__ Role roleNow() const {
+    if (ctx.producerShare == 0) return Role::Any;
+    uint32_t backlog = loadRelaxed32(ctx.tasks.ready) + loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
+    if (smId() < (backlog + ctx.producerShare - 1) / ctx.producerShare) return Role::Producer;
+    return loadRelaxed32(ctx.counter(PT_EXITED)) != 0 ? Role::Any : Role::LeavesTasks;
+  }
   // The samples of `owner`'s production; then, the warp's own, its end.
   __device__ void help(uint32_t owner) {
     begin(TaskKind::Produce);
@@ -443,7 +482,7 @@ struct WarpWorker {
   __device__ void idle() {
     if (timed()) shared.span.close(ctx.frame.timeline);
     __nanosleep(backoff);
-    backoff = backoff < 1024 ? backoff * 2 : backoff;
+    backoff = backoff < PT_LONGEST_SLEEP ? backoff * 2 : backoff;
   }
   __device__ void finish() {
     if (timed()) shared.span.close(ctx.frame.timeline);
@@ -451,7 +490,7 @@ struct WarpWorker {
 
   __device__ void worked() {
     if (timed()) shared.span.taskDone();
-    backoff = 32;
+    backoff = PT_SHORTEST_SLEEP;
   }
   __device__ void begin(TaskKind k) {
     if (timed()) shared.span.begin(ctx.frame.timeline, k);
@@ -474,6 +513,7 @@ __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
   }
   WarpWorker<P> w{ctx, pool, producer, lane, mine};
   ptWorkerLoop(ctx, w);
+  if (lane == 0) atomicAdd(ctx.counter(PT_EXITED), 1u);
 }
 
 template <class P>
