@@ -141,7 +141,7 @@ TEST(PtWorkerLoop, WithNothingToTakeItHelpsThenPrefetchesThenIdles) {
   }
 }
 
-// A producer SM's warp (PtContext::producerSms) takes no rays, items or prefetch rays.
+// A producer SM's warp (pt_worker.cuh: roleNow) takes no rays, items or prefetch rays.
 TEST(PtWorkerLoop, AProducerOnlyProducesAndHelps) {
   auto producer = [](ScriptedWorker& w) {
     w.rendering = false;
@@ -163,7 +163,7 @@ TEST(PtWorkerLoop, AProducerOnlyProducesAndHelps) {
   EXPECT_EQ(run(producer), (Steps{"idle", "finish"}));
 }
 
-// The other warps leave tasks and productions to the producers while any is in the loop.
+// The other warps (LeavesTasks) leave tasks and productions to the producer SMs.
 TEST(PtWorkerLoop, AWorkerThatLeavesTasksNeverProducesOrHelps) {
   auto leaves = [](ScriptedWorker& w) {
     w.taking = false;

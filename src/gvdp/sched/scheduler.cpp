@@ -5,6 +5,7 @@
 
 #include "gvdp/base/error.h"
 #include "gvdp/base/gpu.h"
+#include "gvdp/mesh/text_tokens.h"
 #include "gvdp/sched/direct/direct.h"
 #include "gvdp/sched/dp/dp.h"
 #include "gvdp/sched/graph/graph.h"
@@ -85,10 +86,9 @@ GraphDriver graphDriverFromEnvironment() {
 uint32_t ptProducerShareFromEnvironment() {
   const char* v = std::getenv("GVDP_PT_PRODUCER_SHARE");
   if (v == nullptr || *v == '\0') return 0;
-  char* end = nullptr;
-  unsigned long s = std::strtoul(v, &end, 10);
-  GVDP_INPUT_CHECK(end != v && *end == '\0' && *v >= '0' && *v <= '9' && s <= 4096,
-                   "bad GVDP_PT_PRODUCER_SHARE '", v, "' (expected 0..4096; 0: off)");
+  int64_t s = 0;
+  GVDP_INPUT_CHECK(parseInt(v, s) && s >= 0 && s <= 4096, "bad GVDP_PT_PRODUCER_SHARE '", v,
+                   "' (expected 0..4096; 0: off)");
   return static_cast<uint32_t>(s);
 }
 

@@ -77,7 +77,7 @@ enum PtCounter : int {
   PT_NEXT_PREFETCH,  // next prefetch ray
   PT_PREFETCHES,     // bricks claimed by the prefetch
   PT_OPEN,           // productions with chunks left for helpers (pt_worker.cuh: openProduction)
-  PT_EXITED,         // warps that left the loop (the GPU's producer SMs: pt_worker.cuh)
+  PT_EXITED,         // warps that left the loop (counted with producer SMs only: pt_worker.cuh)
   PT_IN_FLIGHT,      // production tasks taken and not ended (the same)
   PT_COUNTER_COUNT
 };
@@ -520,13 +520,12 @@ GVDP_HD GVDP_INLINE void ptWorkerLoop(const PtContext& ctx, Worker& w) {
     }
     if (production == NO_PRODUCTION) {
       const bool renders = w.renders();
-      uint32_t n = 0, first = ctx.itemCount, p = ctx.prefetchItems;
-      if (renders && (n = w.claim(ctx.rays, PT_BATCH, &position)) != 0) {
+      if (uint32_t n = renders ? w.claim(ctx.rays, PT_BATCH, &position) : 0u) {
         batch = w.queued(position, n);
-      } else if (renders && (first = w.claimFresh()) < ctx.itemCount) {
+      } else if (uint32_t first = renders ? w.claimFresh() : ctx.itemCount; first < ctx.itemCount) {
         batch = w.fresh(first);
       } else if (!tasks || (production = w.findProduction()) == NO_PRODUCTION) {
-        if (renders && (p = w.claimPrefetch()) < ctx.prefetchItems)
+        if (uint32_t p = renders ? w.claimPrefetch() : ctx.prefetchItems; p < ctx.prefetchItems)
           w.prefetch(p);
         else
           w.idle();

@@ -306,7 +306,7 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
     atomicAdd(ctx.counter(PT_PRODUCTIONS), 1u);
-    atomicSub(ctx.counter(PT_IN_FLIGHT), 1u);
+    if (ctx.producerShare != 0) atomicSub(ctx.counter(PT_IN_FLIGHT), 1u);
     endTask(ctx, id);
   }
 }
@@ -389,7 +389,7 @@ struct WarpWorker {
     id = __shfl_sync(FULL_MASK, id, 0);
     bool chunks = openProductionTask(ctx, producer, id, warp(), lane);
     if (lane == 0) {
-      atomicAdd(ctx.counter(PT_IN_FLIGHT), 1u);
+      if (ctx.producerShare != 0) atomicAdd(ctx.counter(PT_IN_FLIGHT), 1u);
       shared.ownTask = id;
       shared.ownChunks = chunks;
     }
@@ -513,7 +513,7 @@ __global__ void __launch_bounds__(PT_BLOCK, PT_MIN_BLOCKS)
   }
   WarpWorker<P> w{ctx, pool, producer, lane, mine};
   ptWorkerLoop(ctx, w);
-  if (lane == 0) atomicAdd(ctx.counter(PT_EXITED), 1u);
+  if (lane == 0 && ctx.producerShare != 0) atomicAdd(ctx.counter(PT_EXITED), 1u);  // (roleNow)
 }
 
 template <class P>
