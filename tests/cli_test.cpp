@@ -368,7 +368,8 @@ TEST(Cli, GraphLoopEnvironmentIsCheckedByName) {
   if (before) setenv("GVDP_GRAPH_LOOP", saved.c_str(), 1);
 }
 
-// GVDP_PT_PRODUCER_SHARE turns on pt's producer SMs; anything but an integer 0..4096 is an error.
+// GVDP_PT_PRODUCER_SHARE turns on pt's producer SMs (unset or 0: off); anything but an integer
+// 0..4096 is an error.
 TEST(Cli, PtProducerShareEnvironmentIsChecked) {
   const char* before = std::getenv("GVDP_PT_PRODUCER_SHARE");
   std::string saved = before ? before : "";
@@ -376,8 +377,10 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
     setenv("GVDP_PT_PRODUCER_SHARE", bad, 1);
     EXPECT_THROW(ptProducerShareFromEnvironment(), InputError) << bad;
   }
-  setenv("GVDP_PT_PRODUCER_SHARE", "2", 1);
-  EXPECT_EQ(ptProducerShareFromEnvironment(), 2u);
+  setenv("GVDP_PT_PRODUCER_SHARE", "5", 1);
+  EXPECT_EQ(ptProducerShareFromEnvironment(), 5u);
+  setenv("GVDP_PT_PRODUCER_SHARE", "0", 1);
+  EXPECT_EQ(ptProducerShareFromEnvironment(), 0u);
   unsetenv("GVDP_PT_PRODUCER_SHARE");
   EXPECT_EQ(ptProducerShareFromEnvironment(), 0u);
   // Checked before the frame's work, by name, for pt only (the CPU ignores it).

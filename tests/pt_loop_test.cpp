@@ -191,5 +191,24 @@ TEST(PtWorkerLoop, RunsUntilNoWorkIsLive) {
             (Steps{"rays", "render", "rays", "render", "idle", "finish"}));
 }
 
+// A warp's role (ptRole) with producer SMs, share 2 on 132 SMs (spike backlog 528): SMs below
+// ceil(backlog / 2) produce, the others leave tasks to them, until a warp has left the loop or
+// the frame is a spike.
+TEST(PtRole, ProducerSmsFollowTheBacklogUntilASpike) {
+  constexpr uint32_t S = 2, SPIKE = 2 * S * 132;
+  auto role = [](uint32_t backlog, uint32_t sm, bool exited = false, bool spike = false) {
+    return ptRole(S, SPIKE, spike, backlog, sm, exited);
+  };
+  EXPECT_EQ(role(0, 0), PtRole::LeavesTasks);  // no backlog: every SM renders
+  EXPECT_EQ(role(5, 2), PtRole::Producer);     // ceil(5 / 2) = 3 SMs produce
+  EXPECT_EQ(role(5, 3), PtRole::LeavesTasks);
+  EXPECT_EQ(role(SPIKE - 1, 131), PtRole::Producer);  // every SM
+  EXPECT_EQ(role(SPIKE, 0), PtRole::Any);             // a spike: every warp takes any work
+  EXPECT_EQ(role(5, 0, false, true), PtRole::Any);    // and for the rest of the frame
+  EXPECT_EQ(role(5, 3, true), PtRole::Any);           // a warp left: the last takes any task
+  EXPECT_EQ(role(5, 0, true), PtRole::Producer);
+  EXPECT_EQ(ptRole(0, 0, false, 5, 0, false), PtRole::Any);  // without producer SMs
+}
+
 }  // namespace
 }  // namespace gvdp::detail

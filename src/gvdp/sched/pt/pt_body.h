@@ -79,6 +79,7 @@ enum PtCounter : int {
   PT_OPEN,           // productions with chunks left for helpers (pt_worker.cuh: openProduction)
   PT_EXITED,         // warps that left the loop (counted with producer SMs only: pt_worker.cuh)
   PT_IN_FLIGHT,      // production tasks taken and not ended (the same)
+  PT_SPIKE,          // nonzero once the frame's backlog reached spikeBacklog (the same)
   PT_COUNTER_COUNT
 };
 
@@ -190,6 +191,7 @@ struct PtContext {
   TileOrder tiles;            // their order (the GPU's; row-major on the CPU)
   PtProductions productions;  // the GPU's (pt_worker.cuh)
   uint32_t producerShare;     // the GPU's producer SMs (pt_worker.cuh: roleNow); 0: none
+  uint32_t spikeBacklog;      // the backlog from which a frame has no producer SMs (the same)
 
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
 };
@@ -474,6 +476,21 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
 
 // No production's owner (a GPU warp's worker index, pt_worker.cuh), and no task id.
 constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
+
+// A GPU warp's role in a round of pt's loop (pt_worker.cuh: roleNow): Any takes any work; a
+// Producer only produces (takes tasks, helps first, never renders); LeavesTasks renders, leaving
+// tasks and help to the producers. With producer SMs (`share` S != 0), the warp of SM `sm` is a
+// Producer while sm < ceil(backlog / S), else LeavesTasks; every warp is Any without them, in a
+// spike frame (`spike`: its backlog has reached `spikeBacklog`, the first warp to see it marks
+// it) and once a warp has left the loop (`exited`: the last worker left takes any task).
+enum class PtRole : uint32_t { Any, Producer, LeavesTasks };
+
+GVDP_HD GVDP_INLINE PtRole ptRole(uint32_t share, uint32_t spikeBacklog, bool spike,
+                                  uint32_t backlog, uint32_t sm, bool exited) {
+  if (share == 0 || spike || backlog >= spikeBacklog) return PtRole::Any;
+  if (sm < (backlog + share - 1) / share) return PtRole::Producer;
+  return exited ? PtRole::Any : PtRole::LeavesTasks;
+}
 
 // pt's worker loop, once for both backends: a worker (a CPU thread, or a GPU warp whose lanes all
 // run it) takes, in this order, a production task, up to PT_BATCH relaunched rays, or the next

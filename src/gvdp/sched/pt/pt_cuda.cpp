@@ -2,6 +2,7 @@
 #include <optional>
 #include <vector>
 
+#include "gvdp/base/cuda_util.h"
 #include "gvdp/sched/producer_kernels_cuda.h"
 #include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/pt/pt_cuda.h"
@@ -11,6 +12,15 @@
 
 namespace gvdp::detail {
 namespace {
+
+// The backlog from which a frame of `share` has no producer SMs: twice the one at which every SM
+// of the device would produce (pt_worker.cuh: roleNow).
+uint32_t spikeBacklogOf(uint32_t share) {
+  int device = 0, sms = 0;
+  GVDP_CUDA_CHECK(cudaGetDevice(&device));
+  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  return 2 * share * static_cast<uint32_t>(sms);
+}
 
 class PtCuda final : public SpFrameCuda {
  public:
@@ -95,6 +105,7 @@ class PtCuda final : public SpFrameCuda {
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
     ctx.producerShare = producerShare_;
+    ctx.spikeBacklog = spikeBacklog_;
     ctx.tiles = tileOrder_.next(f, stream());
     launchPtFrameStart(ctx, layout_, ringsQuiet_, buffers_.counters.data() + 1, stream());
     ringsQuiet_ = false;  // until this frame's end says so
@@ -116,6 +127,7 @@ class PtCuda final : public SpFrameCuda {
   PtLayout layout_{};
   bool ringsQuiet_ = false;  // the last frame left the rings as a frame starts them
   uint32_t producerShare_ = ptProducerShareFromEnvironment();
+  uint32_t spikeBacklog_ = spikeBacklogOf(producerShare_);
 };
 
 }  // namespace

@@ -354,9 +354,7 @@ struct WarpWorker {
   WarpWorkerShared& shared;  // the warp's: little of the worker's own lives in registers across
                              // the march (WarpSpan)
   unsigned backoff = PT_SHORTEST_SLEEP;  // ns
-  // Any: takes any work; Producer: only produces; LeavesTasks: renders, leaving the productions
-  // to the producer SMs (roleNow).
-  enum class Role : uint32_t { Any, Producer, LeavesTasks } role = Role::Any;
+  PtRole role = PtRole::Any;             // this round's (roleNow)
 
   // What lane 0 finds, for every lane.
   template <class F>
@@ -372,7 +370,7 @@ struct WarpWorker {
       live = loadRelaxed32(ctx.counter(PT_LIVE_WORK));
       r = static_cast<uint32_t>(roleNow());
     }
-    role = static_cast<Role>(__shfl_sync(FULL_MASK, r, 0));
+    role = static_cast<PtRole>(__shfl_sync(FULL_MASK, r, 0));
     return __shfl_sync(FULL_MASK, live, 0);
   }
   __device__ uint32_t claim(const Ring& r, uint32_t n, uint32_t* position) const {
@@ -433,22 +431,31 @@ struct WarpWorker {
   // productions to them, except a warp that has idled to its longest sleep (no SM id below the
   // count may be running: ids are not guaranteed dense) or once a warp has left the loop (a
   // prefetch's claim may come after the producers left: the last worker left takes any task).
-  // S = 2 on an H200: 25 pt cells FPS x1.070-1.071, 1% lows x1.019-1.026, floors x1.001-1.010,
-  // but the spike frames of random-spheres forward and aligned-spheres walkthrough slower
-  // (BENCHMARKS.md, session 39). Without it (S = 0, the default), helper SMs (PT_HELPER_SMS).
+  // A frame whose backlog reaches spikeBacklog (twice what every SM producing would serve) is a
+  // spike, production-bound: from then on every warp takes any work, as without producer SMs,
+  // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
+  // forward's 267 000-brick frame: 47 ms, 82 ms with producer SMs throughout, 47 ms so). S = 2
+  // on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows x1.028-1.058, floors
+  // x0.991-0.993, but aligned-spheres' spike frames of 20 000-64 000 bricks 1.3-1.8x slower
+  // (BENCHMARKS.md, session 40). Without it (S = 0, the default), helper SMs (PT_HELPER_SMS).
   __device__ bool helpsFirst() const {
-    return ctx.producerShare != 0 ? role == Role::Producer : smId() % PT_HELPER_SMS == 0;
+    return role == PtRole::Producer || (role == PtRole::Any && smId() % PT_HELPER_SMS == 0);
   }
-  __device__ bool renders() const { return role != Role::Producer; }
+  __device__ bool renders() const { return role != PtRole::Producer; }
   __device__ bool takesTasks() const {
-    return role != Role::LeavesTasks || backoff == PT_LONGEST_SLEEP;
+    return role != PtRole::LeavesTasks || backoff == PT_LONGEST_SLEEP;
   }
-  // Lane 0's: the warp's role this round.
-  __device__ Role roleNow() const {
-    if (ctx.producerShare == 0) return Role::Any;
-    uint32_t backlog = loadRelaxed32(ctx.tasks.ready) + loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
-    if (smId() < (backlog + ctx.producerShare - 1) / ctx.producerShare) return Role::Producer;
-    return loadRelaxed32(ctx.counter(PT_EXITED)) != 0 ? Role::Any : Role::LeavesTasks;
+  // Lane 0's: the warp's role this round (ptRole); the first warp to see a spike marks it.
+  __device__ PtRole roleNow() const {
+    if (ctx.producerShare == 0) return PtRole::Any;
+    const bool spike = loadRelaxed32(ctx.counter(PT_SPIKE)) != 0;
+    uint32_t backlog = 0;
+    if (!spike) {
+      backlog = loadRelaxed32(ctx.tasks.ready) + loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
+      if (backlog >= ctx.spikeBacklog) atomicExch(ctx.counter(PT_SPIKE), 1u);
+    }
+    return ptRole(ctx.producerShare, ctx.spikeBacklog, spike, backlog, smId(),
+                  loadRelaxed32(ctx.counter(PT_EXITED)) != 0);
   }
   // The samples of `owner`'s production; then, the warp's own, its end.
   __device__ void help(uint32_t owner) {
