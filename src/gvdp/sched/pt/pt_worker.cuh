@@ -436,7 +436,7 @@ struct WarpWorker {
   // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
   // forward's 267 000-brick frame: 47 ms, 82 ms with producer SMs throughout, 47 ms so). S = 2
   // on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows x1.028-1.058, floors
-  // x0.991-0.993, but aligned-spheres' spike frames of 20 000-64 000 bricks 1.3-1.8x slower
+  // x0.991-0.993, but aligned-spheres' spike frames of 20 000-64 000 bricks 1.3-1.9x slower
   // (BENCHMARKS.md, session 40). Without it (S = 0, the default), helper SMs (PT_HELPER_SMS).
   __device__ bool helpsFirst() const {
     return role == PtRole::Producer || (role == PtRole::Any && smId() % PT_HELPER_SMS == 0);
