@@ -111,15 +111,21 @@ class GpuTimer {
   cudaEvent_t start_{}, stop_{};
 };
 
+// The current device's SMs.
+inline int smCount() {
+  int device = 0, sms = 0;
+  GVDP_CUDA_CHECK(cudaGetDevice(&device));
+  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  return sms;
+}
+
 // Blocks of `kernel` (`threads` each) that fit on the device at once: the grid of a persistent
 // or grid-claiming kernel.
 template <class Kernel>
 int residentBlocks(Kernel kernel, int threads) {
-  int device = 0, sms = 0, perSm = 0;
-  GVDP_CUDA_CHECK(cudaGetDevice(&device));
-  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  int perSm = 0;
   GVDP_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, kernel, threads, 0));
-  return sms * (perSm > 0 ? perSm : 1);
+  return smCount() * (perSm > 0 ? perSm : 1);
 }
 
 }  // namespace gvdp::detail

@@ -6,11 +6,8 @@ namespace {
 
 class GpuFrameTimeline final : public FrameTimeline {
  public:
-  explicit GpuFrameTimeline(cudaStream_t stream) : timeline_(TIMELINE_CAPACITY, stream) {
-    int device = 0;
-    GVDP_CUDA_CHECK(cudaGetDevice(&device));
-    GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&lanes_, cudaDevAttrMultiProcessorCount, device));
-  }
+  explicit GpuFrameTimeline(cudaStream_t stream)
+      : timeline_(TIMELINE_CAPACITY, stream), lanes_(smCount()) {}
   TimelineView begin() override { return timeline_.begin(); }
   TimelineCapture end() override {
     TimelineCapture c;

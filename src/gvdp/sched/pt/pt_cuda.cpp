@@ -16,10 +16,7 @@ namespace {
 // The backlog from which a frame of `share` has no producer SMs: twice the one at which every SM
 // of the device would produce (pt_worker.cuh: roleNow).
 uint32_t spikeBacklogOf(uint32_t share) {
-  int device = 0, sms = 0;
-  GVDP_CUDA_CHECK(cudaGetDevice(&device));
-  GVDP_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  return 2 * share * static_cast<uint32_t>(sms);
+  return 2 * share * static_cast<uint32_t>(smCount());
 }
 
 class PtCuda final : public SpFrameCuda {
