@@ -40,6 +40,22 @@ TEST(FrameStats, SlowestFrameAndItsBricksOverTheMean) {
   EXPECT_DOUBLE_EQ(slowestFrame({1.0}, {}).bricksOverMean, 0.0) << "sizes differ: nothing";
 }
 
+// The slowest frame's time over the time the other frames' line (ms against bricks) predicts for
+// its bricks: 1 for a spike of work, more for a frame slower than its bricks explain.
+TEST(FrameStats, SlowestFrameOverWhatTheOtherFramesPredict) {
+  // The others lie on ms = 1 + 0.01 bricks; the slowest too (a spike of work): 1.
+  SlowestFrame s = slowestFrame({2.0, 3.0, 11.0, 2.5}, {100, 200, 1000, 150});
+  EXPECT_EQ(s.index, 2u);
+  EXPECT_NEAR(s.overPredicted, 1.0, 1e-12);
+  // The same bricks but twice the time the line predicts: a latency.
+  EXPECT_NEAR(slowestFrame({2.0, 3.0, 22.0, 2.5}, {100, 200, 1000, 150}).overPredicted, 2.0, 1e-12);
+  // Bricks that do not vary: the prediction is the others' mean time.
+  EXPECT_NEAR(slowestFrame({2.0, 6.0, 4.0}, {50, 50, 50}).overPredicted, 2.0, 1e-12);
+  // Fewer bricks taking longer among the others: the slope is held at 0, the mean again.
+  EXPECT_NEAR(slowestFrame({3.0, 9.0, 1.0}, {0, 80, 100}).overPredicted, 9.0 / 2.0, 1e-12);
+  EXPECT_EQ(slowestFrame({2.0, 9.0}, {1, 5}).overPredicted, 0.0) << "under 3 frames: no line";
+}
+
 TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
   BenchOptions o;
   o.scenes = {"aligned-spheres"};
@@ -72,6 +88,7 @@ TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
     EXPECT_GE(c["slowest_bricks_x"].get<double>(), 0.0);
     EXPECT_LE(c["slowest_bricks_x"].get<double>(), 2.0)
         << "one of two frames: at most twice the mean";
+    EXPECT_EQ(c["slowest_over_predicted"].get<double>(), 0.0) << "two frames: no line to predict";
     if (c["scheduler"] == "sp") {
       EXPECT_DOUBLE_EQ(c["speedup_vs_sp"].get<double>(), 1.0);
     }
@@ -80,7 +97,8 @@ TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
   EXPECT_NE(md.find("| walkthrough |"), std::string::npos);
   EXPECT_NE(md.find("aligned-spheres SU dp"), std::string::npos);
   EXPECT_NE(benchCsv(r).find("aligned-spheres,sideways,dp,"), std::string::npos);
-  EXPECT_NE(benchCsv(r).find(",slowest_frame,slowest_bricks_x\n"), std::string::npos);
+  EXPECT_NE(benchCsv(r).find(",slowest_frame,slowest_bricks_x,slowest_over_predicted\n"),
+            std::string::npos);
 }
 
 TEST(Bench, CommandWritesItsOutputsAndRejectsBadLists) {

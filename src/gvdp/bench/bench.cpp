@@ -90,6 +90,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
   SlowestFrame slowest = slowestFrame(c.frameMs, c.frameBricks);
   c.slowestFrame = o.warmup + static_cast<int>(slowest.index);
   c.slowestBricks = slowest.bricksOverMean;
+  c.slowestOverPredicted = slowest.overPredicted;
   c.bricksPerFrame = static_cast<double>(bricks) / static_cast<double>(o.frames);
   c.floorMs = frameTimeStats(floor).medianMs;
   c.overproduction = bricks ? static_cast<double>(unsampled) / static_cast<double>(bricks) : 0.0;
@@ -155,10 +156,11 @@ BenchResults runBench(const BenchOptions& o,
         std::snprintf(line, sizeof line,
                       "%s %s %s: %.1f FPS (1%% low %.1f), %.0f bricks/frame, per ray %.1f samples "
                       "%.1f lookups %.1f skips, %.1f%% of bricks unsampled; slowest frame %d "
-                      "(%.1fx the mean bricks)",
+                      "(%.1fx the mean bricks, %.2fx the time the other frames predict for them)",
                       c.scene.c_str(), c.movement.c_str(), c.scheduler.c_str(), c.avgFps, c.low1Fps,
                       c.bricksPerFrame, c.samplesPerRay, c.lookupsPerRay, c.skipsPerRay,
-                      100.0 * c.overproduction, c.slowestFrame, c.slowestBricks);
+                      100.0 * c.overproduction, c.slowestFrame, c.slowestBricks,
+                      c.slowestOverPredicted);
         std::string text = line;
         if (o.budgetMs >= 0.0) {
           std::snprintf(line, sizeof line,
@@ -215,6 +217,7 @@ std::string benchJson(const BenchResults& r) {
                      {"prefetch_used", c.prefetchUsed},
                      {"slowest_frame", c.slowestFrame},
                      {"slowest_bricks_x", c.slowestBricks},
+                     {"slowest_over_predicted", c.slowestOverPredicted},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
@@ -240,14 +243,15 @@ std::string benchCsv(const BenchResults& r) {
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
        "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
        "skips_per_ray,overproduction,within_budget,coarser_pixels,prefetched_per_frame,"
-       "prefetch_used,slowest_frame,slowest_bricks_x\n";
+       "prefetch_used,slowest_frame,slowest_bricks_x,slowest_over_predicted\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
       << ',' << c.speedupVsSp << ',' << c.floorMs << ',' << c.memoryBytes << ',' << c.samplesPerRay
       << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << ','
       << c.withinBudget << ',' << c.coarserPixels << ',' << c.prefetchedPerFrame << ','
-      << c.prefetchUsed << ',' << c.slowestFrame << ',' << c.slowestBricks << '\n';
+      << c.prefetchUsed << ',' << c.slowestFrame << ',' << c.slowestBricks << ','
+      << c.slowestOverPredicted << '\n';
   return s.str();
 }
 

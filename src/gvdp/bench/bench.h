@@ -48,9 +48,11 @@ struct BenchCell {
   std::vector<double> frameWallMs;    // host wall clock around each frame's render() call
   std::vector<uint64_t> frameBricks;  // bricks produced and EMPTY, per measured frame
   // The slowest measured frame (frame_stats.h: slowestFrame): its index on the path (warm-up
-  // frames counted) and its bricks over the cell's mean.
+  // frames counted), its bricks over the cell's mean, and its time over the time the cell's other
+  // frames predict for its bricks.
   int slowestFrame = 0;
   double slowestBricks = 0;
+  double slowestOverPredicted = 0;
   MemoryReport memory;
 };
 

@@ -31,12 +31,17 @@ inline FrameTimeStats frameTimeStats(std::vector<double> ms) {
 }
 
 // A run's slowest frame (its 1% low with fewer than 100 frames) and what it asked for: its
-// position among the frames, and its bricks (produced and EMPTY) over the run's mean. A slowest
-// frame of several times the mean bricks is a spike of the camera's path (a sphere left, a
-// corridor opening): exact frames produce all of them in that frame, whatever the scheduler.
+// position among the frames, its bricks (produced and EMPTY) over the run's mean, and its time
+// over the time the run's other frames predict for its bricks (overPredicted: a least-squares
+// line of ms against bricks through the other frames, its slope at least 0; 0 with fewer than 3
+// frames). A slowest frame of several times the mean bricks is a spike of the camera's path (a
+// sphere left, a corridor opening): exact frames produce all of them in that frame, whatever the
+// scheduler. overPredicted near 1 says the frame is as slow as its work, whatever its bricks; well
+// over 1, slower than its bricks explain: a latency (a chain of productions, a stall).
 struct SlowestFrame {
   size_t index = 0;
   double bricksOverMean = 0;
+  double overPredicted = 0;
 };
 
 inline SlowestFrame slowestFrame(const std::vector<double>& ms,
@@ -47,6 +52,23 @@ inline SlowestFrame slowestFrame(const std::vector<double>& ms,
   double mean = static_cast<double>(std::accumulate(bricks.begin(), bricks.end(), uint64_t{0})) /
                 static_cast<double>(bricks.size());
   s.bricksOverMean = mean > 0 ? static_cast<double>(bricks[s.index]) / mean : 0.0;
+  if (ms.size() < 3) return s;
+  double n = static_cast<double>(ms.size() - 1), mx = 0, my = 0;
+  for (size_t i = 0; i < ms.size(); ++i)
+    if (i != s.index) {
+      mx += static_cast<double>(bricks[i]) / n;
+      my += ms[i] / n;
+    }
+  double sxx = 0, sxy = 0;
+  for (size_t i = 0; i < ms.size(); ++i)
+    if (i != s.index) {
+      double dx = static_cast<double>(bricks[i]) - mx;
+      sxx += dx * dx;
+      sxy += dx * (ms[i] - my);
+    }
+  double slope = sxx > 0 ? std::max(sxy / sxx, 0.0) : 0.0;
+  double predicted = my + slope * (static_cast<double>(bricks[s.index]) - mx);
+  s.overPredicted = predicted > 0 ? ms[s.index] / predicted : 0.0;
   return s;
 }
 
