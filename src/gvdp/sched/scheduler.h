@@ -61,7 +61,7 @@ struct FrameStats {
 // produced: 2 keeps it under the 10% the issue allows. Before, 4 had made perlin 4-14% slower.
 constexpr uint32_t DEFAULT_LOOKAHEAD = 2;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
-constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 8;  // pt: see ptTailLookahead
+constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 16;  // pt: see ptTailLookahead
 
 // pt's idle-time prefetch (pt_body.h): a ray of the predicted next frame per N x N pixels, 0: off.
 // On by default: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 made pt's 25 cells faster on
@@ -91,7 +91,10 @@ struct SchedulerOptions {
 // session 23), 8 bricks once one ray in 256 is live gave FPS x1.046, random-spheres' walkthrough
 // frame-12 idle 12% -> 6-8%, over-production at most 9.4% (fbm spinning, 8.1% without); once one
 // ray in 32 is live (session 14's tail), fbm spinning over-produced 11.5-16.6%, over the 10%
-// issue 14 allows; 4 to 6 bricks at one ray in 32 to 256 gave less (FPS x1.025-1.043).
+// issue 14 allows; 4 to 6 bricks at one ray in 32 to 256 gave less (FPS x1.025-1.043). 16 by
+// default since session 41 (H200, 25 pt cells against 8, 2 + 4 rounds): 1% lows x1.014 /
+// x1.017, FPS x1.004 / x1.003, random-spheres' frame-12 idle 6.2-7.9% -> 3.5-5.9%, fbm
+// spinning's over-production 5.4-5.8% -> 8.1-8.3%; 32 over-produced 12.6% there.
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
 }
