@@ -36,6 +36,9 @@ def main():
             cells = json.load(f)["cells"]
         if not cells:
             raise ValueError("no cells")
+        for c in cells:
+            if not c["frame_ms"] or not all(isinstance(t, (int, float)) for t in c["frame_ms"]):
+                raise ValueError(f"cell {c.get('scene')} {c.get('movement')}: no frame_ms")
     except (OSError, ValueError, KeyError, TypeError) as e:
         print(f"moved_work_bound: cannot read '{a.bench}': {e}", file=sys.stderr)
         sys.exit(2)
