@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
-"""Joins scripts/ncu_lines.sh's two outputs: the share of a kernel's warp instructions and stall
-samples per source line, and the lanes its instructions ran on.
+"""Joins scripts/ncu_lines.sh's two outputs: the share of a kernel's warp instructions, of its
+stall samples and of its no-instruction stall samples (the instruction fetch) per source line, and
+the lanes its instructions ran on. The SASS page lists the kernel and each function it calls out
+of line (e.g. gradientNoise), each from its own address; the line table covers the kernel, so a
+called function counts as one line, "function NAME".
 Usage: scripts/ncu_lines.py sass_SCENE.csv.gz lines_SCENE.txt.gz [TOP]"""
 import collections
 import csv
@@ -8,15 +11,45 @@ import gzip
 import sys
 
 if len(sys.argv) < 3:
-    sys.exit(__doc__)
-rows = list(csv.reader(gzip.open(sys.argv[1], "rt")))
-head = next(r for r in rows if r and r[0] == "Address")
-data = [dict(zip(head, r)) for r in rows if len(r) == len(head) and r[0].startswith("0x")]
-if not data:
-    sys.exit(f"{sys.argv[1]}: no instructions")
-base = int(data[0]["Address"], 16)
+    print(__doc__, file=sys.stderr)
+    sys.exit(2)
+
+
+def opened(path):
+    try:
+        return gzip.open(path, "rt")
+    except OSError as e:
+        print(f"ncu_lines.py: cannot read {path}: {e.strerror or e}", file=sys.stderr)
+        sys.exit(2)
+
+
+# Blocks of the page: a "Kernel Name" row, a header row ("Address", ...), then one row an
+# instruction.
+blocks, name, head = [], None, None
+try:
+    page = list(csv.reader(opened(sys.argv[1])))
+    table = list(opened(sys.argv[2]))
+except (OSError, EOFError, UnicodeDecodeError) as e:
+    print(f"ncu_lines.py: {sys.argv[1]} or {sys.argv[2]} is not a gzip text file: {e}",
+          file=sys.stderr)
+    sys.exit(2)
+for r in page:
+    if r and r[0] == "Kernel Name":
+        name, head = r[1], None
+        blocks.append((name, []))
+    elif r and r[0] == "Address":
+        head = r
+        if not blocks:
+            blocks.append(("?", []))
+    elif head and len(r) == len(head) and r[0].startswith("0x"):
+        blocks[-1][1].append(dict(zip(head, r)))
+blocks = [(n, rows) for n, rows in blocks if rows]
+if not blocks:
+    print(f"ncu_lines.py: {sys.argv[1]}: no instructions", file=sys.stderr)
+    sys.exit(2)
+kernel = max(blocks, key=lambda b: len(b[1]))[0]  # the kernel: the largest block
 where = {}
-for line in gzip.open(sys.argv[2], "rt"):
+for line in table:
     parts = line.split(None, 1)
     if line.startswith("#") or not parts:
         continue
@@ -24,17 +57,35 @@ for line in gzip.open(sys.argv[2], "rt"):
 
 
 def count(d, key):
-    return int(d[key].replace(",", ""))
+    return int(d.get(key, "0").replace(",", "") or 0)
 
 
-warp, thread, stalls = collections.Counter(), collections.Counter(), collections.Counter()
-for d in data:
-    loc = where.get(int(d["Address"], 16) - base, "?")
-    warp[loc] += count(d, "Instructions Executed")
-    thread[loc] += count(d, "Thread Instructions Executed")
-    stalls[loc] += count(d, "Warp Stall Sampling (All Samples)")
+warp, thread = collections.Counter(), collections.Counter()
+stalls, fetch = collections.Counter(), collections.Counter()
+for n, rows in blocks:
+    base = int(rows[0]["Address"], 16)
+    short = n.split("(")[0].split("::")[-1]
+    for d in rows:
+        loc = where.get(int(d["Address"], 16) - base, "?") if n == kernel else f"function {short}"
+        warp[loc] += count(d, "Instructions Executed")
+        thread[loc] += count(d, "Thread Instructions Executed")
+        stalls[loc] += count(d, "Warp Stall Sampling (All Samples)")
+        fetch[loc] += count(d, "stall_no_inst")
 total, samples = sum(warp.values()), max(sum(stalls.values()), 1)
-print(f"{total} warp instructions, {sum(thread.values()) / max(total, 1):.1f} lanes each")
+nofetch = max(sum(fetch.values()), 1)
+print(f"{total} warp instructions, {sum(thread.values()) / max(total, 1):.1f} lanes each; "
+      f"no-instruction stalls {100 * sum(fetch.values()) / samples:.1f}% of the stall samples")
+print(" instrs  stalls  no-instr  lanes  source line")
 for loc, n in warp.most_common(int(sys.argv[3]) if len(sys.argv) > 3 else 30):
-    print(f"{100 * n / total:5.1f}% instructions {100 * stalls[loc] / samples:5.1f}% stall samples "
-          f"{thread[loc] / max(n, 1):5.1f} lanes  {loc}")
+    print(f"{100 * n / total:6.1f}% {100 * stalls[loc] / samples:6.1f}%"
+          f" {100 * fetch[loc] / nofetch:8.1f}% {thread[loc] / max(n, 1):5.1f}  {loc}")
+# The same per source file (a called function is its own).
+files = collections.defaultdict(lambda: [0, 0, 0])
+for loc, n in warp.items():
+    f = files[loc.rsplit(":", 1)[0]]
+    f[0] += n
+    f[1] += stalls[loc]
+    f[2] += fetch[loc]
+print(" instrs  stalls  no-instr  source file")
+for f, (n, s, i) in sorted(files.items(), key=lambda kv: -kv[1][2])[:15]:
+    print(f"{100 * n / total:6.1f}% {100 * s / samples:6.1f}% {100 * i / nofetch:8.1f}%  {f}")
