@@ -15,28 +15,23 @@ if len(sys.argv) < 3:
     sys.exit(2)
 
 
-def opened(path):
+def read(path, parse):
+    """parse(the gzip text file at path), or a one-line error and exit status 2."""
     try:
-        return gzip.open(path, "rt")
-    except OSError as e:
-        print(f"ncu_lines.py: cannot read {path}: {e.strerror or e}", file=sys.stderr)
+        return list(parse(gzip.open(path, "rt")))
+    except (OSError, EOFError, UnicodeDecodeError) as e:
+        print(f"ncu_lines.py: cannot read {path} as gzip text: {e}", file=sys.stderr)
         sys.exit(2)
 
 
 # Blocks of the page: a "Kernel Name" row, a header row ("Address", ...), then one row an
 # instruction.
-blocks, name, head = [], None, None
-try:
-    page = list(csv.reader(opened(sys.argv[1])))
-    table = list(opened(sys.argv[2]))
-except (OSError, EOFError, UnicodeDecodeError) as e:
-    print(f"ncu_lines.py: {sys.argv[1]} or {sys.argv[2]} is not a gzip text file: {e}",
-          file=sys.stderr)
-    sys.exit(2)
+page, table = read(sys.argv[1], csv.reader), read(sys.argv[2], iter)
+blocks, head = [], None
 for r in page:
     if r and r[0] == "Kernel Name":
-        name, head = r[1], None
-        blocks.append((name, []))
+        head = None
+        blocks.append((r[1], []))
     elif r and r[0] == "Address":
         head = r
         if not blocks:
@@ -75,10 +70,14 @@ total, samples = sum(warp.values()), max(sum(stalls.values()), 1)
 nofetch = max(sum(fetch.values()), 1)
 print(f"{total} warp instructions, {sum(thread.values()) / max(total, 1):.1f} lanes each; "
       f"no-instruction stalls {100 * sum(fetch.values()) / samples:.1f}% of the stall samples")
+def shares(n, s, i):
+    """A row's shares of the instructions, the stall samples and the no-instruction samples."""
+    return f"{100 * n / total:6.1f}% {100 * s / samples:6.1f}% {100 * i / nofetch:8.1f}%"
+
+
 print(" instrs  stalls  no-instr  lanes  source line")
 for loc, n in warp.most_common(int(sys.argv[3]) if len(sys.argv) > 3 else 30):
-    print(f"{100 * n / total:6.1f}% {100 * stalls[loc] / samples:6.1f}%"
-          f" {100 * fetch[loc] / nofetch:8.1f}% {thread[loc] / max(n, 1):5.1f}  {loc}")
+    print(f"{shares(n, stalls[loc], fetch[loc])} {thread[loc] / max(n, 1):5.1f}  {loc}")
 # The same per source file (a called function is its own).
 files = collections.defaultdict(lambda: [0, 0, 0])
 for loc, n in warp.items():
@@ -88,4 +87,4 @@ for loc, n in warp.items():
     f[2] += fetch[loc]
 print(" instrs  stalls  no-instr  source file")
 for f, (n, s, i) in sorted(files.items(), key=lambda kv: -kv[1][2])[:15]:
-    print(f"{100 * n / total:6.1f}% {100 * s / samples:6.1f}% {100 * i / nofetch:8.1f}%  {f}")
+    print(f"{shares(n, s, i)}  {f}")
