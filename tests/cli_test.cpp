@@ -368,7 +368,7 @@ TEST(Cli, GraphLoopEnvironmentIsCheckedByName) {
   if (before) setenv("GVDP_GRAPH_LOOP", saved.c_str(), 1);
 }
 
-// GVDP_PT_PRODUCER_SHARE turns on pt's producer SMs (unset or 0: off); anything but an integer
+// GVDP_PT_PRODUCER_SHARE sets pt's producer SMs (unset: S = 2; 0: off); anything but an integer
 // 0..4096 is an error.
 TEST(Cli, PtProducerShareEnvironmentIsChecked) {
   const char* before = std::getenv("GVDP_PT_PRODUCER_SHARE");
@@ -382,7 +382,8 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
   setenv("GVDP_PT_PRODUCER_SHARE", "0", 1);
   EXPECT_EQ(ptProducerShareFromEnvironment(), 0u);
   unsetenv("GVDP_PT_PRODUCER_SHARE");
-  EXPECT_EQ(ptProducerShareFromEnvironment(), 0u);
+  EXPECT_EQ(ptProducerShareFromEnvironment(), PT_PRODUCER_SHARE_DEFAULT);
+  EXPECT_EQ(PT_PRODUCER_SHARE_DEFAULT, 2u);
   // Checked before the frame's work, by name, for pt only (the CPU ignores it).
   setenv("GVDP_PT_PRODUCER_SHARE", "two", 1);
   const std::string out = " --out " + test::tempDir("cli_producer_share");

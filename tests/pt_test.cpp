@@ -281,6 +281,25 @@ TEST(GpuGraphTest, HostDrivenLoopMatchesSpBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, GpuPtTest, ::testing::Range(0, SCENE_COUNT));
 
+// Without producer SMs (GVDP_PT_PRODUCER_SHARE=0: helper SMs only, the default until session 45)
+// pt still renders sp's frames and finishes every pixel; the default path runs with S = 2.
+TEST(GpuPt, WithoutProducerSmsMatchesSpBitForBit) {
+  GVDP_REQUIRE_GPU();
+  const char* before = std::getenv("GVDP_PT_PRODUCER_SHARE");
+  const std::string saved = before ? before : "";
+  for (const char* scene : {"perlin", "random-spheres"}) {
+    Renders sp = renderRun(scene, {Backend::Cuda, SchedulerKind::Sp}, 12, 320, 200);
+    setenv("GVDP_PT_PRODUCER_SHARE", "0", 1);
+    Renders pt = renderRun(scene, {Backend::Cuda, SchedulerKind::Pt}, 12, 320, 200);
+    unsetenv("GVDP_PT_PRODUCER_SHARE");
+    for (int f = 0; f < 12; ++f) {
+      EXPECT_EQ(sp.images[f].pixels, pt.images[f].pixels) << scene << " frame " << f;
+      EXPECT_EQ(pt.stats[f].unfinishedPixels, 0) << scene << " frame " << f;
+    }
+  }
+  if (before) setenv("GVDP_PT_PRODUCER_SHARE", saved.c_str(), 1);
+}
+
 TEST(GpuPt, LookaheadChangesWhatIsProducedNeverTheImage) {
   GVDP_REQUIRE_GPU();
   for (const char* scene : {"perlin", "forest", "random-spheres"})

@@ -85,7 +85,7 @@ GraphDriver graphDriverFromEnvironment() {
 
 uint32_t ptProducerShareFromEnvironment() {
   const char* v = std::getenv("GVDP_PT_PRODUCER_SHARE");
-  if (v == nullptr || *v == '\0') return 0;
+  if (v == nullptr || *v == '\0') return PT_PRODUCER_SHARE_DEFAULT;
   int64_t s = 0;
   GVDP_INPUT_CHECK(parseInt(v, s) && s >= 0 && s <= 4096, "bad GVDP_PT_PRODUCER_SHARE '", v,
                    "' (expected 0..4096; 0: off)");

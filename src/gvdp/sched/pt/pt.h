@@ -10,9 +10,10 @@
 
 namespace gvdp::detail {
 
-// GVDP_PT_PRODUCER_SHARE=S: the GPU's producer SMs, one per S productions of backlog
-// (pt_worker.cuh: roleNow; an experiment, off by default); unset or 0: none. Throws InputError
+// The GPU's producer SMs, one per S productions of backlog (pt_worker.cuh: roleNow): S = 2
+// unless GVDP_PT_PRODUCER_SHARE=S says otherwise (0: none, helper SMs only). Throws InputError
 // naming any value but an integer 0..4096.
+inline constexpr uint32_t PT_PRODUCER_SHARE_DEFAULT = 2;
 uint32_t ptProducerShareFromEnvironment();
 
 std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);

@@ -423,7 +423,7 @@ struct WarpWorker {
     worked();
   }
   __device__ uint32_t findProduction() const { return openProduction(ctx.productions, lane); }
-  // Producer SMs (opt-in: GVDP_PT_PRODUCER_SHARE, PtContext::producerShare = S): SMs 0 ..
+  // Producer SMs (PtContext::producerShare = S: 2 unless GVDP_PT_PRODUCER_SHARE says): SMs 0 ..
   // ceil(backlog / S) - 1, the backlog being the tasks queued and the productions taken and not
   // ended, only produce; their warps help before anything else. Every SM's instruction caches
   // then hold the production code or the march, not both (a growth round on one warp: 1.9 us
@@ -436,8 +436,8 @@ struct WarpWorker {
   // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
   // forward's 267 000-brick frame: 47 ms, 82 ms with producer SMs throughout, 47 ms so). S = 2
   // on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows x1.028-1.058, floors
-  // x0.991-0.993, but aligned-spheres' spike frames of 20 000-64 000 bricks 1.3-1.9x slower
-  // (BENCHMARKS.md, session 40). Without it (S = 0, the default), helper SMs (PT_HELPER_SMS).
+  // x0.991-0.993 (session 40); on session 44's code FPS x1.08, 1% lows x1.08-1.10, the default
+  // since session 45 (BENCHMARKS.md). With S = 0, helper SMs only (PT_HELPER_SMS).
   __device__ bool helpsFirst() const {
     return role == PtRole::Producer || (role == PtRole::Any && smId() % PT_HELPER_SMS == 0);
   }
