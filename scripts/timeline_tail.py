@@ -4,9 +4,10 @@ thread per SM): the idle share of the frame's span (SM-time with no record open,
 SMs) split into the frame's start (to the first render record), the worker's last TAIL us, the
 time between, and what follows the worker (the resolve); then the worker's last TAIL us in bins:
 the share of SM-time busy (any record open), with each kind of record, and the records (warp
-spans) of each kind open in the bin.
+spans) of each kind open in the bin. With --bands N, the time between by bands of N SMs (by id:
+pt's producer SMs are the lowest), each band's share busy and busy with each kind.
 
-Usage: scripts/timeline_tail.py TRACE.json [--tail US] [--bin US] [--sms N]
+Usage: scripts/timeline_tail.py TRACE.json [--tail US] [--bin US] [--sms N] [--bands N]
 A trace it cannot read, or one without records, is a one-line error with exit status 2.
 """
 import argparse
@@ -36,7 +37,10 @@ def main():
     ap.add_argument("--tail", type=float, default=240.0, help="the worker's last us (240)")
     ap.add_argument("--bin", type=float, default=20.0, help="bin width in us (20)")
     ap.add_argument("--sms", type=int, default=0, help="SMs (default: the trace's thread names)")
+    ap.add_argument("--bands", type=int, default=0, help="the time between by bands of N SMs")
     a = ap.parse_args()
+    if a.bands < 0:
+        fail(f"bad --bands {a.bands} (expected N >= 1, or 0: none)")
     try:
         with open(a.trace) as f:
             events = json.load(f)["traceEvents"]
@@ -85,6 +89,21 @@ def main():
             line += f"{sum(1 for r in worker if r[3] == k and r[1] < hi and r[2] > b):11d} "
         print(line.rstrip())
         b = hi
+    if a.bands > 0:
+        between_bands(a.bands, sms, first, tail0, by_sm, kind_sm, kinds)
+
+
+def between_bands(n, sms, lo, hi, by_sm, kind_sm, kinds):
+    """The time between (lo..hi) by bands of n SMs: each band's share busy, and with each kind."""
+    print(f"between ({hi - lo:.0f} us) by bands of {n} SMs: busy, " + ", ".join(kinds))
+    for first_sm in range(0, sms, n):
+        band = range(first_sm, min(first_sm + n, sms))
+        width = (hi - lo) * len(band) / 100.0 if hi > lo else float("inf")
+        busy = sum(union_length(by_sm.get(sm, []), lo, hi) for sm in band) / width
+        shares = [sum(union_length(kind_sm.get((k, sm), []), lo, hi) for sm in band) / width
+                  for k in kinds]
+        print(f"SMs {band[0]:3d}-{band[-1]:<3d} {busy:5.1f}% " +
+              " ".join(f"{v:9.1f}%" for v in shares))
 
 
 if __name__ == "__main__":

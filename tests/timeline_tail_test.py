@@ -55,6 +55,12 @@ with tempfile.TemporaryDirectory() as d:
     for b in bins:
         check(b[1:5] == ['50.0%', '0.0%', '50.0%', '0.0%'], f'made-up trace: bin {b}')
 
+    # By bands of one SM, between (0..100 us): SM 0 renders throughout, SM 1 half of it.
+    r = run(made, '--tail', '50', '--bin', '25', '--bands', '1')
+    bands = [line.split() for line in r.stdout.splitlines() if line.startswith('SMs')]
+    check([b[2:5] for b in bands] == [['100.0%', '100.0%', '0.0%'], ['50.0%', '50.0%', '0.0%']],
+          f'made-up trace: bands {bands}')
+
     # gvdp's own trace: the script's idle is the summary's (both the union of each SM's records).
     png, trace = os.path.join(d, 't.png'), os.path.join(d, 't.json')
     g = subprocess.run([gvdp, 'timeline', '--backend', 'cpu', '--scheduler', 'pt', '--scene',
