@@ -70,6 +70,8 @@ total, samples = sum(warp.values()), max(sum(stalls.values()), 1)
 nofetch = max(sum(fetch.values()), 1)
 print(f"{total} warp instructions, {sum(thread.values()) / max(total, 1):.1f} lanes each; "
       f"no-instruction stalls {100 * sum(fetch.values()) / samples:.1f}% of the stall samples")
+
+
 def shares(n, s, i):
     """A row's shares of the instructions, the stall samples and the no-instruction samples."""
     return f"{100 * n / total:6.1f}% {100 * s / samples:6.1f}% {100 * i / nofetch:8.1f}%"

@@ -357,22 +357,19 @@ TEST(Cli, ScenesAndInfoList) {
 
 // GVDP_GRAPH_LOOP selects who repeats graph's loop (scripts/gpu_check.sh); a typo is an error.
 TEST(Cli, GraphLoopEnvironmentIsCheckedByName) {
-  const char* before = std::getenv("GVDP_GRAPH_LOOP");
-  std::string saved = before ? before : "";
+  test::EnvRestore restore("GVDP_GRAPH_LOOP");
   setenv("GVDP_GRAPH_LOOP", "hots", 1);
   EXPECT_THROW(graphDriverFromEnvironment(), InputError);
   setenv("GVDP_GRAPH_LOOP", "host", 1);
   EXPECT_EQ(graphDriverFromEnvironment(), GraphDriver::Host);
   unsetenv("GVDP_GRAPH_LOOP");
   EXPECT_EQ(graphDriverFromEnvironment(), GraphDriver::Device);
-  if (before) setenv("GVDP_GRAPH_LOOP", saved.c_str(), 1);
 }
 
 // GVDP_PT_PRODUCER_SHARE sets pt's producer SMs (unset: S = 2; 0: off); anything but an integer
 // 0..4096 is an error.
 TEST(Cli, PtProducerShareEnvironmentIsChecked) {
-  const char* before = std::getenv("GVDP_PT_PRODUCER_SHARE");
-  std::string saved = before ? before : "";
+  test::EnvRestore restore("GVDP_PT_PRODUCER_SHARE");
   for (const char* bad : {"two", "-2", "4097", "2x", " 2"}) {
     setenv("GVDP_PT_PRODUCER_SHARE", bad, 1);
     EXPECT_THROW(ptProducerShareFromEnvironment(), InputError) << bad;
@@ -389,8 +386,6 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
   const std::string out = " --out " + test::tempDir("cli_producer_share");
   expectInputError("render --backend cpu --scheduler pt" + TINY + out,
                    "bad GVDP_PT_PRODUCER_SHARE 'two' (expected 0..4096; 0: off)");
-  unsetenv("GVDP_PT_PRODUCER_SHARE");
-  if (before) setenv("GVDP_PT_PRODUCER_SHARE", saved.c_str(), 1);
 }
 
 }  // namespace gvdp::detail

@@ -285,8 +285,7 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, GpuPtTest, ::testing::Range(0, SCENE_COUNT))
 // pt still renders sp's frames and finishes every pixel; the default path runs with S = 2.
 TEST(GpuPt, WithoutProducerSmsMatchesSpBitForBit) {
   GVDP_REQUIRE_GPU();
-  const char* before = std::getenv("GVDP_PT_PRODUCER_SHARE");
-  const std::string saved = before ? before : "";
+  test::EnvRestore restore("GVDP_PT_PRODUCER_SHARE");
   for (const char* scene : {"perlin", "random-spheres"}) {
     Renders sp = renderRun(scene, {Backend::Cuda, SchedulerKind::Sp}, 12, 320, 200);
     setenv("GVDP_PT_PRODUCER_SHARE", "0", 1);
@@ -297,7 +296,6 @@ TEST(GpuPt, WithoutProducerSmsMatchesSpBitForBit) {
       EXPECT_EQ(pt.stats[f].unfinishedPixels, 0) << scene << " frame " << f;
     }
   }
-  if (before) setenv("GVDP_PT_PRODUCER_SHARE", saved.c_str(), 1);
 }
 
 TEST(GpuPt, LookaheadChangesWhatIsProducedNeverTheImage) {

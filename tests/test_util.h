@@ -46,6 +46,29 @@ inline CommandResult runGvdp(const std::string& args) {
   return runCommand(gvdpBinary() + " " + args);
 }
 
+// An environment variable as it was before a test changed it (set, or unset), put back when the
+// guard goes out of scope, a failed assertion's return included.
+class EnvRestore {
+ public:
+  explicit EnvRestore(const char* name) : name_(name) {
+    const char* v = std::getenv(name);
+    was_ = v != nullptr;
+    if (was_) value_ = v;
+  }
+  EnvRestore(const EnvRestore&) = delete;
+  EnvRestore& operator=(const EnvRestore&) = delete;
+  ~EnvRestore() {
+    if (was_)
+      setenv(name_.c_str(), value_.c_str(), 1);
+    else
+      unsetenv(name_.c_str());
+  }
+
+ private:
+  std::string name_, value_;
+  bool was_ = false;
+};
+
 inline std::string tempDir(const std::string& name) {
   return ::testing::TempDir() + "gvdp_" + name + "_" + std::to_string(::getpid());
 }
