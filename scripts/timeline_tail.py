@@ -5,9 +5,12 @@ SMs) split into the frame's start (to the first render record), the worker's las
 time between, and what follows the worker (the resolve); then the worker's last TAIL us in bins:
 the share of SM-time busy (any record open), with each kind of record, and the records (warp
 spans) of each kind open in the bin. With --bands N, the time between by bands of N SMs (by id:
-pt's producer SMs are the lowest), each band's share busy and busy with each kind.
+pt's producer SMs are the lowest), each band's share busy and busy with each kind. With
+--last-renders N, the frame's last rays: the stretch from the last time fewer than N render records
+became open to the worker's end, its length, its share busy and its idle as a share of the frame.
 
 Usage: scripts/timeline_tail.py TRACE.json [--tail US] [--bin US] [--sms N] [--bands N]
+                                [--last-renders N]
 A trace it cannot read, or one without records, is a one-line error with exit status 2.
 """
 import argparse
@@ -38,9 +41,13 @@ def main():
     ap.add_argument("--bin", type=float, default=20.0, help="bin width in us (20)")
     ap.add_argument("--sms", type=int, default=0, help="SMs (default: the trace's thread names)")
     ap.add_argument("--bands", type=int, default=0, help="the time between by bands of N SMs")
+    ap.add_argument("--last-renders", type=int, default=0,
+                    help="the last stretch with fewer than N render records open")
     a = ap.parse_args()
     if a.bands < 0:
         fail(f"bad --bands {a.bands} (expected N >= 1, or 0: none)")
+    if a.last_renders < 0:
+        fail(f"bad --last-renders {a.last_renders} (expected N >= 1, or 0: none)")
     try:
         with open(a.trace) as f:
             events = json.load(f)["traceEvents"]
@@ -91,6 +98,26 @@ def main():
         b = hi
     if a.bands > 0:
         between_bands(a.bands, sms, first, tail0, by_sm, kind_sm, kinds)
+    if a.last_renders > 0:
+        lo = last_renders_start(a.last_renders, worker, first)
+        width = (last - lo) * sms
+        busy = sum(union_length(v, lo, last) for v in by_sm.values())
+        print(f"fewer than {a.last_renders} render records open: the last {last - lo:.0f} us, "
+              f"{100.0 * busy / width if width > 0 else 0.0:.1f}% busy, "
+              f"{100.0 * (width - busy) / (span * sms):.1f}% of the frame idle")
+
+
+def last_renders_start(n, worker, first):
+    """When the render records open last fell below n (ends before starts at one time), or the
+    first render record's start if n were never open."""
+    events = sorted([(s, 1) for _, s, _, k in worker if k == "render"] +
+                    [(e, -1) for _, _, e, k in worker if k == "render"])
+    count, start = 0, first
+    for t, d in events:
+        if d < 0 and count >= n > count + d:
+            start = t
+        count += d
+    return start
 
 
 def between_bands(n, sms, lo, hi, by_sm, kind_sm, kinds):

@@ -61,6 +61,20 @@ with tempfile.TemporaryDirectory() as d:
     check([b[2:5] for b in bands] == [['100.0%', '100.0%', '0.0%'], ['50.0%', '50.0%', '0.0%']],
           f'made-up trace: bands {bands}')
 
+    # The last renders: two render records are open together until 60 us, so fewer than 2 from
+    # 60 us to the worker's end (150): 90 us, SM 0 busy throughout, SM 1 idle (50% busy), 90 idle
+    # SM-us of the span's 300 (30.0%). Fewer than 3 were open from the first render record on.
+    r = run(made, '--last-renders', '2')
+    last = [line for line in r.stdout.splitlines() if line.startswith('fewer than')]
+    check(last == ['fewer than 2 render records open: the last 90 us, 50.0% busy, 30.0% of the '
+                   'frame idle'], f'made-up trace: last renders {last}')
+    r = run(made, '--last-renders', '3')
+    check('the last 150 us, 66.7% busy, 33.3% of the frame idle' in r.stdout,
+          f'made-up trace: fewer than 3 renders: {r.stdout}')
+    r = run(made, '--last-renders', '-1')
+    check(r.returncode == 2 and '--last-renders -1' in r.stderr,
+          f'--last-renders -1: exit {r.returncode}, stderr {r.stderr!r}')
+
     # gvdp's own trace: the script's idle is the summary's (both the union of each SM's records).
     png, trace = os.path.join(d, 't.png'), os.path.join(d, 't.json')
     g = subprocess.run([gvdp, 'timeline', '--backend', 'cpu', '--scheduler', 'pt', '--scene',
