@@ -6,8 +6,8 @@ time between, and what follows the worker (the resolve); then the worker's last 
 the share of SM-time busy (any record open), with each kind of record, and the records (warp
 spans) of each kind open in the bin. With --bands N, the time between by bands of N SMs (by id:
 pt's producer SMs are the lowest), each band's share busy and busy with each kind. With
---last-renders N, the frame's last rays: the stretch from the last time fewer than N render records
-became open to the worker's end, its length, its share busy and its idle as a share of the frame.
+--last-renders N, the frame's last rays: the stretch from when the render records open last fell
+below N to the worker's end, its length, its share busy and its idle as a share of the frame.
 
 Usage: scripts/timeline_tail.py TRACE.json [--tail US] [--bin US] [--sms N] [--bands N]
                                 [--last-renders N]
