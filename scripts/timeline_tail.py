@@ -100,11 +100,10 @@ def main():
         between_bands(a.bands, sms, first, tail0, by_sm, kind_sm, kinds)
     if a.last_renders > 0:
         lo = last_renders_start(a.last_renders, worker, first)
-        width = (last - lo) * sms
-        busy = sum(union_length(v, lo, last) for v in by_sm.values())
+        share = idle(lo, last)  # of the frame's SM-time; of the stretch's, scaled by its length
+        busy = 100.0 - share * span / (last - lo) if last > lo else 0.0
         print(f"fewer than {a.last_renders} render records open: the last {last - lo:.0f} us, "
-              f"{100.0 * busy / width if width > 0 else 0.0:.1f}% busy, "
-              f"{100.0 * (width - busy) / (span * sms):.1f}% of the frame idle")
+              f"{busy:.1f}% busy, {share:.1f}% of the frame idle")
 
 
 def last_renders_start(n, worker, first):
