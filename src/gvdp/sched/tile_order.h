@@ -3,17 +3,23 @@
 // the last work taken is done; taken in row-major order, that was as likely costly as cheap, and
 // SMs fell idle one by one for 0.5 ms while a few finished costly tiles (a floor frame of
 // random-spheres, `gvdp timeline --again`, H100). A frame measures what each block of 4x4 tiles
-// cost (SM cycles of the warps that render its rays afresh: counting the rays run again after a
-// production too, pt's spinning walks lost 2-4% of their FPS, H100); the next frame of the same
-// size moves those costs with the camera's turn, takes each block's largest cost among its
-// neighbours (the camera's step moves near things by a block) and sorts the blocks by it
+// cost: the SM cycles of the longest of the warps that render its rays afresh (counting the rays
+// run again after a production too, pt's spinning walks lost 2-4% of their FPS, H100). A block's
+// warps run side by side, so the longest is the block's critical path, and the frame cannot end
+// sooner than the longest warp's start plus its cycles: in pt's render-only frames (perlin's and
+// random-spheres' walkthrough frame 12 again, H200) the last warps to finish were those of the
+// first blocks, 1.4-1.7 ms long against a median of 67-95 us. The next frame of the same size
+// moves those costs with the camera's turn, takes each block's largest cost among its neighbours
+// (the camera's step moves near things by a block) and sorts the blocks by it
 // (tile_order_cuda.h). Any order gives the same image: rays are independent.
 //
-// Measured on the H100 (walkthrough and forward, sp and pt, floors): sorting 8x8 tiles forest's
-// floors x1.15 (their costs move more between frames, and neighbours no longer run together);
-// blocks by their own cost x0.973 over 20 cells but forest's walkthrough x1.09; with the
-// neighbourhood's largest cost x0.94 over 50 cells, forest's walkthrough x0.92-0.99 (BENCHMARKS.md,
-// session 21).
+// Measured on the H100 (walkthrough and forward, sp and pt, floors), with the sum of the warps'
+// cycles as a block's cost: sorting 8x8 tiles forest's floors x1.15 (their costs move more between
+// frames, and neighbours no longer run together); blocks by their own cost x0.973 over 20 cells
+// but forest's walkthrough x1.09; with the neighbourhood's largest cost x0.94 over 50 cells,
+// forest's walkthrough x0.92-0.99 (BENCHMARKS.md, session 21). The longest warp instead of the
+// sum, on an H200 (25 pt cells, two calls of 2 rounds): floors x0.990-0.991, FPS x1.002-1.004;
+// random-spheres' walkthrough frame 12 again 2.84-2.91 -> 2.73-2.78 ms (session 47).
 #pragma once
 
 #include <cmath>
@@ -25,7 +31,7 @@ namespace gvdp::detail {
 
 struct TileOrder {
   const uint32_t* order = nullptr;  // per rank, the block taken (null: row-major)
-  uint32_t* cost = nullptr;         // per block, the cycles measured in this frame (null: none)
+  uint32_t* cost = nullptr;         // per block, its longest warp's cycles (null: none)
 };
 
 // What is ordered is blocks of 4x4 tiles (32x32 pixels), each tile's pixels in tiledPixel's
@@ -111,9 +117,9 @@ GVDP_HD GVDP_INLINE uint32_t blockCostKey(uint32_t cycles) {
 }
 
 #if defined(__CUDACC__)
-// Adds a warp's cycles on item i's rays to its block's cost (one lane of the warp calls it).
+// A warp's cycles on item i's rays: its block's cost if the longest (one lane of a warp calls it).
 __device__ inline void noteBlockCost(const TileOrder& t, int i, uint32_t cycles) {
-  if (t.cost) atomicAdd(&t.cost[orderedBlock(t, i)], cycles);
+  if (t.cost) atomicMax(&t.cost[orderedBlock(t, i)], cycles);
 }
 
 __device__ inline uint32_t smCycles() {
