@@ -19,7 +19,8 @@
 // but forest's walkthrough x1.09; with the neighbourhood's largest cost x0.94 over 50 cells,
 // forest's walkthrough x0.92-0.99 (BENCHMARKS.md, session 21). The longest warp instead of the
 // sum, on an H200 (25 pt cells, two calls of 2 rounds): floors x0.990-0.991, FPS x1.002-1.004;
-// random-spheres' walkthrough frame 12 again 2.84-2.91 -> 2.73-2.78 ms (session 47).
+// random-spheres' walkthrough frame 12 again 2.84-2.91 -> 2.73-2.78 ms; sp's 25 cells within the
+// noise (floors x0.996, x1.005; session 47).
 #pragma once
 
 #include <cmath>
