@@ -23,6 +23,7 @@
 #include "gvdp/bench/sequence.h"
 #include "gvdp/cache/clipmap.h"
 #include "gvdp/io/output_paths.h"
+#include "gvdp/io/ray_cost_map.h"
 #include "gvdp/io/stats.h"
 #include "gvdp/io/timeline_export.h"
 #include "gvdp/io/video.h"
@@ -53,7 +54,7 @@ struct RenderFlags {
   std::string origin = "0,0,0", out = "out", timeline, video, tiles = "auto", tilePlan = "off";
   std::string mesh;
   float lattice = 0.0f;
-  bool reference = false;
+  bool reference = false, costMap = false;
   std::optional<int> frames, width, height;
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
@@ -128,6 +129,9 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
   cmd->add_flag("--reference", f.reference,
                 "with --mesh: also the ray cast of the triangles (reference_NNNN.png) and each "
                 "frame's PSNR against it");
+  cmd->add_flag("--cost-map", f.costMap,
+                "also each pixel's brick lookups and samples (cost_NNNN.png, a heat map each, and "
+                "their quantiles in stats.json)");
   cmd->add_option("--timeline", f.timeline,
                   "also record every frame's GPU-cores timeline: DIR/timeline_NNNN.png and .json");
   cmd->add_option("--video", f.video,
@@ -251,10 +255,21 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.tiles.mode = parseTileMode(f.tiles, &o.tiles.grid);
   o.tiles.plan = f.tilePlan == "on";
   o.scheduler.timeline = !f.timeline.empty();
+  GVDP_INPUT_CHECK(!f.costMap || o.scheduler.kind != SchedulerKind::Direct,
+                   "--cost-map needs a cached scheduler (sp, dp, pt or graph): 'direct' makes no "
+                   "brick lookups");
+  o.scheduler.rayCosts = f.costMap;
   o.scheduler = resolvedOptions(o.scheduler);
   validate(o);
   checkResources(o, poolFlag(f));
   return o;
+}
+
+// A picture's title: "pt on cuda, perlin frame 12, 1500x1000".
+std::string frameTitle(const SequenceOptions& o, int index) {
+  return std::string(schedulerName(o.scheduler.kind)) + " on " +
+         std::string(backendName(o.scheduler.backend)) + ", " + worldName(o) + " frame " +
+         std::to_string(index) + ", " + std::to_string(o.width) + "x" + std::to_string(o.height);
 }
 
 void writeTimeline(const FrameStats& s, const std::string& dir, int index,
@@ -262,11 +277,7 @@ void writeTimeline(const FrameStats& s, const std::string& dir, int index,
   char base[64];
   std::snprintf(base, sizeof base, "/timeline_%04d", index);
   const TimelineCapture& t = s.timeline;
-  std::string title = std::string(schedulerName(o.scheduler.kind)) + " on " +
-                      std::string(backendName(o.scheduler.backend)) + ", " + worldName(o) +
-                      " frame " + std::to_string(index) + ", " + std::to_string(o.width) + "x" +
-                      std::to_string(o.height);
-  writePng(timelineImage(t.records, t.lanes, title), dir + base + ".png");
+  writePng(timelineImage(t.records, t.lanes, frameTitle(o, index)), dir + base + ".png");
   std::ofstream json(dir + base + ".json");
   json << chromeTraceJson(t.records, t.lanes);
   GVDP_INPUT_CHECK(json.good(), "cannot write '", dir, base, ".json'");
@@ -319,6 +330,7 @@ int runRender(const RenderFlags& flags) {
                std::string(schedulerName(o.scheduler.kind)).c_str(),
                o.scheduler.backend == Backend::Cuda ? cudaDeviceSummary().c_str() : "cpu");
   std::vector<FrameStats> frames;
+  std::vector<RayCostSummary> costs;
   // The reference: the same mesh, its tree built on the CPU, ray cast on the CPU.
   std::shared_ptr<const MeshScene> reference;
   if (flags.reference) reference = MeshScene::load(o.mesh, o.lattice, Backend::Cpu);
@@ -337,7 +349,13 @@ int runRender(const RenderFlags& flags) {
         }
         if (video) video->add(image);
         if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
+        if (!s.rayCosts.empty()) {
+          costs.push_back(summarizeRayCosts(s.rayCosts));
+          std::snprintf(name, sizeof name, "/cost_%04d.png", s.index);
+          writePng(rayCostImage(s.rayCosts, costs.back(), frameTitle(o, s.index)), dir + name);
+        }
         frames.push_back(s);
+        frames.back().rayCosts = {};  // the maps are in the pictures
         std::printf(
             "frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s%s\n",
             s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
@@ -354,6 +372,7 @@ int runRender(const RenderFlags& flags) {
                       static_cast<unsigned long long>(s.launchFailures),
                       static_cast<unsigned long long>(s.deferred),
                       static_cast<long long>(s.sweptPixels));
+        if (!s.rayCosts.empty()) std::printf("           %s\n", rayCostLine(costs.back()).c_str());
         if (s.tiles > 1 || s.tileSplits || s.lodBias)
           std::printf(
               "           tiles %d  split on overflow %d  plans %d (%.1f ms)  lod bias %d\n",
@@ -361,7 +380,7 @@ int runRender(const RenderFlags& flags) {
         std::fflush(stdout);
       },
       TileBar{});
-  writeStatsJson(dir + "/stats.json", o, frames, memory);
+  writeStatsJson(dir + "/stats.json", o, frames, memory, costs);
   if (video)
     std::printf("wrote %s (%d frames at %d FPS)\n", flags.video.c_str(), video->close(),
                 flags.videoFps);

@@ -83,6 +83,13 @@ class BrickCache {
     }
     size_t rays = static_cast<size_t>(frame.pixelCount());
     if (requests_.size() < rays) requests_ = Buffer<BrickKey>(rays);
+    costWidth_ = frame.rayCosts ? frame.width : 0;
+    costHeight_ = frame.height;
+    if (frame.rayCosts) {
+      if (rayCosts_.size() != RAY_COST_WORDS * rays)
+        rayCosts_ = Buffer<uint32_t>(RAY_COST_WORDS * rays);
+      ops_.fillBytes(rayCosts_, 0);
+    }
     takeFreeList();
     refills_ = 0;
   }
@@ -117,6 +124,7 @@ class BrickCache {
     v.frame = frame_;
     v.degraded = degraded_ ? 1u : 0u;
     v.budgeted = budgeted() ? 1u : 0u;
+    v.rayCosts = costWidth_ ? rayCosts_.data() : nullptr;
     return v;
   }
   BrickPool pool() { return BrickPool{texels_.data(), occupancy_.data()}; }
@@ -135,6 +143,24 @@ class BrickCache {
     readCounters(c);
     resident_ = resident_ + c[COUNTER_PRODUCED] - c[COUNTER_EVICTED];
     return cacheStatsFrom(c, resident_, refills_);
+  }
+
+  // The frame's ray costs, when it records them (FrameSetup::rayCosts; else empty).
+  RayCosts rayCosts() const {
+    RayCosts c;
+    if (!costWidth_) return c;
+    size_t n = static_cast<size_t>(costWidth_) * costHeight_;
+    std::vector<uint32_t> words(RAY_COST_WORDS * n);
+    ops_.read(rayCosts_.data(), words.data(), words.size());
+    c.width = costWidth_;
+    c.height = costHeight_;
+    c.lookups.resize(n);
+    c.samples.resize(n);
+    for (size_t p = 0; p < n; ++p) {
+      c.lookups[p] = words[RAY_COST_WORDS * p + RAY_COST_LOOKUPS];
+      c.samples[p] = words[RAY_COST_WORDS * p + RAY_COST_SAMPLES];
+    }
+    return c;
   }
 
   MemoryReport memory() const {
@@ -171,7 +197,7 @@ class BrickCache {
   uint32_t poolBricks_;
   ClipmapTracker tracker_;
   Clipmap clipmap_{};
-  Buffer<uint32_t> entries_, timestamps_, counters_;
+  Buffer<uint32_t> entries_, timestamps_, counters_, rayCosts_;
   Buffer<BrickKey> inverse_, requests_;
   Buffer<Rgba8> texels_;
   Buffer<uint64_t> occupancy_;
@@ -179,6 +205,7 @@ class BrickCache {
   TimelineView timeline_{};  // the frame's (beginFrame)
   const uint32_t* freeSlots_ = nullptr;
   uint32_t frame_ = 0, refills_ = 0;
+  int costWidth_ = 0, costHeight_ = 0;  // the frame's, when it records ray costs (else 0)
   uint64_t resident_ = 0;
   int64_t budgetNs_ = -1;
   bool degraded_ = false;

@@ -25,6 +25,16 @@ struct CacheStats {
   uint64_t samples = 0, lookups = 0, skips = 0, coarser = 0;
 };
 
+// Each pixel's brick lookups and samples in a frame (FrameSetup::rayCosts), row by row; empty
+// when the frame did not record them. The lookups are the chain of brick decisions a ray waits on
+// one after the other (render/march.h: Marcher::seek); a relaunched ray's marches are summed.
+struct RayCosts {
+  int width = 0, height = 0;
+  std::vector<uint32_t> lookups, samples;
+
+  bool empty() const { return lookups.empty(); }
+};
+
 struct MemoryItem {
   std::string name;
   size_t bytes;

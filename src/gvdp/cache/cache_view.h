@@ -83,6 +83,8 @@ GVDP_HD GVDP_INLINE void countSlotMark(uint32_t* counters, SlotMark m) {
   if (m == SlotMark::PrefetchUnused) atomicAdd32(&counters[COUNTER_PREFETCH_UNUSED], 1u);
 }
 
+enum RayCostWord : int { RAY_COST_LOOKUPS, RAY_COST_SAMPLES, RAY_COST_WORDS };
+
 struct CacheView {
   Clipmap clipmap;
   uint32_t* entries;          // clipmap.entryCount()
@@ -97,6 +99,10 @@ struct CacheView {
   uint32_t degradeOnFailure;  // nonzero: a failed production degrades the frame (dp, pt)
   uint32_t budgeted;          // nonzero: the frame has a deadline (a time budget)
   float voxelSize0;
+  // Per pixel of the frame, when it records ray costs (FrameSetup::rayCosts; else null): the brick
+  // lookups and the samples of its ray, relaunches summed, at 2 p + RAY_COST_LOOKUPS and
+  // 2 p + RAY_COST_SAMPLES.
+  uint32_t* rayCosts;
 
   // Valid entries of freeSlots: written before the kernels that read it (stream order).
   GVDP_HD uint32_t freeCount() const { return counters[COUNTER_FREE_COUNT]; }

@@ -37,9 +37,15 @@ struct QueueRequest {
 };
 
 // Adds a ray's march counts to the frame's (MarchCounter): on the GPU one atomic per counter
-// and warp (the lanes that get here together), so counting costs the frame nothing visible.
-GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, uint32_t samples, uint32_t lookups,
-                                        uint32_t skips, uint32_t coarser) {
+// and warp (the lanes that get here together), so counting costs the frame nothing visible; and,
+// when the frame records them, to its pixel's (CacheView::rayCosts; pixel < 0: no ray).
+GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, int pixel, uint32_t samples,
+                                        uint32_t lookups, uint32_t skips, uint32_t coarser) {
+  if (cache.rayCosts && pixel >= 0) {
+    uint32_t* mine = cache.rayCosts + size_t{RAY_COST_WORDS} * static_cast<uint32_t>(pixel);
+    atomicAdd32(&mine[RAY_COST_LOOKUPS], lookups);
+    atomicAdd32(&mine[RAY_COST_SAMPLES], samples);
+  }
   uint64_t* c = cache.marchCounters();
 #if GVDP_IS_GPU_CODE
   unsigned mask = __activemask();
@@ -149,9 +155,9 @@ struct CachedAccess {
     return b;
   }
 
-  // The counts of the march so far into the frame's; once per march.
-  GVDP_HD void addCounts() const {
-    addMarchCounts(cache, samples, lookups, skips, coarser);
+  // The counts of the march so far into the frame's and pixel's (< 0: none); once per march.
+  GVDP_HD void addCounts(int pixel) const {
+    addMarchCounts(cache, pixel, samples, lookups, skips, coarser);
   }
 
   GVDP_HD BrickLookup lookup(int level, Vec3i brick) {

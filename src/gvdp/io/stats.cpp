@@ -9,8 +9,17 @@
 
 namespace gvdp::detail {
 
+namespace {
+nlohmann::json quantilesJson(const CostQuantiles& q) {
+  return {{"mean", q.mean}, {"p50", q.p50}, {"p99", q.p99},
+          {"p999", q.p999}, {"max", q.max}, {"max_pixel", {q.maxX, q.maxY}}};
+}
+}  // namespace
+
 std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& frames,
-                      const MemoryReport& memory) {
+                      const MemoryReport& memory, const std::vector<RayCostSummary>& costs) {
+  GVDP_CHECK(costs.empty() || costs.size() == frames.size(), "stats.json: ", costs.size(),
+             " ray-cost summaries for ", frames.size(), " frames");
   nlohmann::json j;
   j["scene"] = worldName(o);
   if (!o.mesh.empty()) {
@@ -73,15 +82,19 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"plan_ms", f.planMs},
                     {"lod_bias", f.lodBias},
                     {"degraded", f.degraded}});
+  for (size_t i = 0; i < costs.size(); ++i)
+    list[i]["ray_costs"] = {{"lookups", quantilesJson(costs[i].lookups)},
+                            {"samples", quantilesJson(costs[i].samples)}};
   j["frames"] = list;
   return j.dump(1);
 }
 
 void writeStatsJson(const std::string& path, const SequenceOptions& o,
-                    const std::vector<FrameStats>& frames, const MemoryReport& memory) {
+                    const std::vector<FrameStats>& frames, const MemoryReport& memory,
+                    const std::vector<RayCostSummary>& costs) {
   std::ofstream out(path);
   GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
-  out << statsJson(o, frames, memory) << "\n";
+  out << statsJson(o, frames, memory, costs) << "\n";
   GVDP_INPUT_CHECK(out.good(), "cannot write '", path, "'");
 }
 

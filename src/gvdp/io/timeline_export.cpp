@@ -4,8 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#define STB_EASY_FONT_IMPLEMENTATION
-#include <stb/stb_easy_font.h>
+#include "gvdp/io/draw.h"
 
 namespace gvdp::detail {
 namespace {
@@ -43,9 +42,6 @@ uint64_t frameEnd(const std::vector<TimelineRecord>& r) {
   return e;
 }
 
-constexpr uint32_t rgb(uint32_t r, uint32_t g, uint32_t b) {
-  return r | (g << 8) | (b << 16) | 0xff000000u;
-}
 const uint32_t KIND_COLOUR[TASK_KIND_COUNT] = {rgb(220, 40, 40),  rgb(50, 90, 230),
                                                rgb(60, 190, 80),  rgb(230, 200, 40),
                                                rgb(240, 140, 30), rgb(40, 190, 200)};
@@ -53,24 +49,6 @@ const uint32_t BOTH_COLOUR = rgb(170, 60, 200);  // render and production on one
 const uint32_t IDLE_COLOUR = rgb(0, 0, 0);
 const uint32_t BACKGROUND = rgb(255, 255, 255);
 const uint32_t INK = rgb(20, 20, 20);
-
-void fillRect(Image& im, int x0, int y0, int x1, int y1, uint32_t c) {
-  for (int y = std::max(0, y0); y < std::min(im.height, y1); ++y)
-    for (int x = std::max(0, x0); x < std::min(im.width, x1); ++x)
-      im.pixels[static_cast<size_t>(y) * im.width + x] = c;
-}
-
-void drawText(Image& im, int x, int y, const std::string& text, uint32_t c) {
-  static char buffer[99999];
-  int quads =
-      stb_easy_font_print(0, 0, const_cast<char*>(text.c_str()), nullptr, buffer, sizeof buffer);
-  const float* v = reinterpret_cast<const float*>(buffer);
-  for (int q = 0; q < quads; ++q) {
-    const float* p = v + q * 16;  // 4 vertices of (x, y, z, colour)
-    fillRect(im, x + static_cast<int>(p[0]), y + static_cast<int>(p[1]), x + static_cast<int>(p[8]),
-             y + static_cast<int>(p[9]), c);
-  }
-}
 
 }  // namespace
 

@@ -99,7 +99,7 @@ GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, 
   RayState s = active && !fresh ? payload[pixel] : initialRayState();
   CachedAccess<Pool, QueueRequest, PoolReads::ReadOnly> access{cache, pool, f.lod};
   bool stopped = marches(ray, f.lod, s, access, active) == MarchResult::Stopped;
-  access.addCounts();
+  access.addCounts(active ? pixel : -1);
   bool done = active && s.finished(f.lod);
   if (finished.image) {
     if (done) finished.image[pixel] = resolvePixel(s.colour, ray.d);

@@ -67,6 +67,7 @@ FrameStats Scheduler::render(const FrameSetup& frame, Image* target) {
   prepareFrame(frame);
   FrameSetup f = frame;
   if (timeline_) f.timeline = timeline_->begin();
+  f.rayCosts = rayCosts_;
   clock_->start();
   renderFrame(f, out, stats);
   stats.ms = clock_->stopMs();
@@ -140,6 +141,7 @@ std::unique_ptr<Scheduler> makeScheduler(const SchedulerOptions& options,
                                          ProducerKernelsPtr producer) {
   std::unique_ptr<Scheduler> s = makeBare(options, std::move(producer));
   if (options.timeline) recordTimelineOf(*s, options.backend, true);
+  s->recordRayCosts(options.rayCosts);
   return s;
 }
 

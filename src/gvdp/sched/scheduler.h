@@ -51,6 +51,7 @@ struct FrameStats {
   int lodBias = 0;      // a degraded frame's coarser LOD (tiles/tiled_frame.h)
   CacheStats cache;
   TimelineCapture timeline;  // when SchedulerOptions::timeline
+  RayCosts rayCosts;         // when SchedulerOptions::rayCosts (cached schedulers)
 };
 
 // pt's lookahead (cache/lookahead.h): bricks a stopped ray claims beyond the one it waits for.
@@ -79,6 +80,7 @@ struct SchedulerOptions {
   uint32_t poolBricks = 0;       // 0: the backend's default
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
+  bool rayCosts = false;         // record each pixel's brick lookups and samples (cached ones)
   uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt: missing bricks a stopped ray claims ahead
   uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt: at least this many in a frame's tail
   uint32_t prefetch = DEFAULT_PREFETCH;             // pt: a prefetch ray per N x N pixels (0: none)
@@ -143,6 +145,9 @@ class Scheduler {
   virtual ~Scheduler();
   // Records the timeline of the following frames into FrameStats::timeline.
   void recordTimeline(std::unique_ptr<FrameTimeline> t) { timeline_ = std::move(t); }
+  // Records each pixel's brick lookups and samples of the following frames into
+  // FrameStats::rayCosts (cached schedulers).
+  void recordRayCosts(bool on) { rayCosts_ = on; }
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
   FrameStats render(const FrameSetup& frame, Image& out) { return render(frame, &out); }
   // With `out` null the image stays on the device, at deviceImage() (cuda backend only).
@@ -171,6 +176,7 @@ class Scheduler {
   bool hostImage_ = true;
   std::unique_ptr<FrameClock> clock_;
   std::unique_ptr<FrameTimeline> timeline_;
+  bool rayCosts_ = false;
 };
 
 // What every cached scheduler reports of its cache after a frame.
@@ -178,6 +184,7 @@ template <class Cache>
 void addCacheStats(Cache& cache, FrameStats& stats) {
   stats.cache = cache.frameStats();
   stats.degraded = stats.degraded || cache.degraded();
+  stats.rayCosts = cache.rayCosts();
 }
 
 // Throws InputError when the backend is not available (no CUDA build or no device).

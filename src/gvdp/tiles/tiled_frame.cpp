@@ -53,6 +53,28 @@ void copyTile(const Image& tile, const PixelTile& at, Image& out) {
                 static_cast<size_t>(at.width) * sizeof(uint32_t));
 }
 
+// A kept tile's ray costs into the image's (sized at the first).
+void copyTileCosts(RayCosts& tile, const PixelTile& at, int width, int height, RayCosts& out) {
+  if (tile.empty()) return;
+  if (at.x == 0 && at.y == 0 && at.width == width && at.height == height) {
+    out = std::move(tile);
+    return;
+  }
+  size_t n = static_cast<size_t>(width) * height;
+  if (out.empty()) {
+    out.width = width;
+    out.height = height;
+    out.lookups.assign(n, 0u);
+    out.samples.assign(n, 0u);
+  }
+  for (int y = 0; y < at.height; ++y) {
+    size_t to = static_cast<size_t>(at.y + y) * width + at.x,
+           from = static_cast<size_t>(y) * at.width;
+    std::copy_n(&tile.lookups[from], at.width, &out.lookups[to]);
+    std::copy_n(&tile.samples[from], at.width, &out.samples[to]);
+  }
+}
+
 }  // namespace
 
 std::vector<PixelTile> splitTile(const PixelTile& t) {
@@ -252,6 +274,7 @@ FrameStats renderTiled(Scheduler& scheduler, const FrameSetup& frame, Image& out
     ++total.tiles;
     ++done;
     kept.push_back(t);
+    copyTileCosts(s.rayCosts, t, frame.width, frame.height, total.rayCosts);
     addTileStats(total, s);
     if (progress) progress(done, done + static_cast<int>(todo.size()));
   }

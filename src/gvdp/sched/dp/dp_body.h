@@ -107,7 +107,7 @@ GVDP_HD void dpRenderPixel(const DpContext& ctx, const Pool& pool, Launcher& lau
     CachedAccess<Pool, LaunchProduction<Launcher>> access{ctx.cache, pool, f.lod,
                                                           LaunchProduction<Launcher>{&launcher}};
     MarchResult r = march(ray, f.lod, s, access);
-    access.addCounts();
+    access.addCounts(pixel);
     storeRayState(&ctx.payload[pixel], s);
     if (r == MarchResult::Finished) {
       storeRelease32(lock, RAY_DONE);

@@ -470,7 +470,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
     live = !park(ctx, p, access.stopEntry);
     again = true;
   }
-  if (pixel >= 0) access.addCounts();
+  if (pixel >= 0) access.addCounts(pixel);
   return finished;
 }
 
