@@ -16,7 +16,9 @@
 # renders.log, montage_<scheduler>.png.
 # Usage: scripts/gpu_check.sh [frames] [schedulers...]   (default: 0, all five schedulers)
 #   TOOLS="memcheck racecheck" and POOLS="large tiny" (environment) run only those tools and
-#   pools (default: all four of each); TESTS=0 skips the tests (when another call runs them).
+#   pools (default: all four of each); TESTS=0 skips the tests (when another call runs them);
+#   RENDER_ARGS="--cost-map" adds flags to every sanitizer render (pass the schedulers that
+#   take them).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out/gpu_check}"
@@ -77,6 +79,8 @@ sanitize() {
   # The scheduler's own degraded frames (then the cold retries of tiles/tiled_frame.cpp);
   # "tiled": frames that overflow 600 bricks, rendered as tiles.
   [ "$pool" = tiny ] && args+=(--tiles off)
+  read -ra extra <<<"${RENDER_ARGS:-}"
+  args+=("${extra[@]}")
   # pt with its lookahead and prefetch on: the protocol with every kind of claim in it (the second
   # frame prefetches for a third, whose prefetch is as dense as the second's yield asks).
   local frames=2

@@ -1,6 +1,7 @@
-// Each pixel's brick lookups and samples (FrameStats::rayCosts, `gvdp render --cost-map`): on every
-// cached scheduler and both backends they add up to the frame's counts, tiles included; the
-// quantiles and the heat map read them right; the command writes the pictures and the summary.
+// Each pixel's brick lookups, samples and stops (FrameStats::rayCosts, `gvdp render --cost-map`):
+// on every cached scheduler and both backends they add up to the frame's counts, tiles included,
+// and every ray of sp's first frame (an empty cache) stops; the quantiles and the heat map read
+// them right; the command writes the pictures and the summary.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,12 +37,24 @@ void expectCostsAddUp(Backend backend, SchedulerKind kind, TileOptions tiles = {
     ASSERT_EQ(c.height, h) << what;
     ASSERT_EQ(c.lookups.size(), static_cast<size_t>(w * h)) << what;
     ASSERT_EQ(c.samples.size(), static_cast<size_t>(w * h)) << what;
+    ASSERT_EQ(c.stops.size(), static_cast<size_t>(w * h)) << what;
     EXPECT_EQ(sum(c.lookups), st.cache.lookups) << what;
     EXPECT_EQ(sum(c.samples), st.cache.samples) << what;
     // Every ray decides at least its first brick; most of them sample something.
     EXPECT_GE(*std::min_element(c.lookups.begin(), c.lookups.end()), 1u) << what;
     EXPECT_GT(st.cache.samples, 0u) << what;
+    // sp's first pass of a first frame finds every ray's first brick missing (dp and pt publish
+    // bricks while rays run: a later ray may find its first brick resident).
+    if (kind == SchedulerKind::Sp && f == 0 && st.tiles == 1) {
+      EXPECT_GE(*std::min_element(c.stops.begin(), c.stops.end()), 1u) << what;
+    }
+    // pt: every relaunched ray had parked after a stop.
+    if (kind == SchedulerKind::Pt) {
+      EXPECT_GE(sum(c.stops), st.relaunchedRays) << what;
+    }
   }
+  // Rays stop less once the cache holds their bricks.
+  EXPECT_LT(sum(r.stats.back().rayCosts.stops), sum(r.stats.front().rayCosts.stops));
 }
 
 }  // namespace
@@ -77,6 +90,7 @@ TEST(RayCosts, QuantilesAndHeatMap) {
   c.height = 2;
   c.lookups = {1, 2, 3, 4, 5, 6, 7, 100};  // the largest at (3, 1)
   c.samples = {0, 0, 0, 0, 0, 0, 9, 0};    // at (2, 1)
+  c.stops = {0, 3, 0, 0, 0, 0, 0, 0};      // at (1, 0)
   RayCostSummary s = summarizeRayCosts(c);
   EXPECT_DOUBLE_EQ(s.lookups.mean, 128.0 / 8);
   EXPECT_EQ(s.lookups.p50, 4u);  // nearest rank: the 4th of 8
@@ -87,6 +101,9 @@ TEST(RayCosts, QuantilesAndHeatMap) {
   EXPECT_EQ(s.samples.p50, 0u);
   EXPECT_EQ(s.samples.maxX, 2);
   EXPECT_EQ(s.samples.maxY, 1);
+  EXPECT_EQ(s.stops.max, 3u);
+  EXPECT_EQ(s.stops.maxX, 1);
+  EXPECT_EQ(s.stops.maxY, 0);
   Image im = rayCostImage(c, s, "test");
   // Each panel's largest value is the ramp's top, a zero its bottom; the map sits below the title
   // and labels, at the panels' left edges.
@@ -94,9 +111,9 @@ TEST(RayCosts, QuantilesAndHeatMap) {
     return std::count(im.pixels.begin(), im.pixels.end(), colour);
   };
   const uint32_t top = rgb(252, 255, 164), bottom = rgb(0, 0, 4);
-  EXPECT_GE(colours(top), 2) << "a lookup and a sample pixel at their maximum (and the bars)";
-  EXPECT_GE(colours(bottom), 7) << "7 samples are 0";
-  EXPECT_GT(im.width, 2 * c.width);
+  EXPECT_GE(colours(top), 3) << "a pixel of each panel at its maximum (and the bars)";
+  EXPECT_GE(colours(bottom), 7 + 7) << "7 samples and 7 stops are 0";
+  EXPECT_GT(im.width, 3 * c.width);
   EXPECT_GT(im.height, c.height);
 }
 
@@ -109,7 +126,7 @@ TEST(RayCosts, CostMapCommandWritesPicturesAndQuantiles) {
   EXPECT_NE(r.output.find("lookups per ray"), std::string::npos) << r.output;
   for (const char* name : {"/cost_0000.png", "/cost_0001.png"}) {
     Image im = readPng(dir + name);
-    EXPECT_GT(im.width, 2 * 64) << name;
+    EXPECT_GT(im.width, 3 * 64) << name;
     EXPECT_GT(im.height, 40) << name;
   }
   std::ifstream in(dir + "/stats.json");
@@ -122,6 +139,8 @@ TEST(RayCosts, CostMapCommandWritesPicturesAndQuantiles) {
     EXPECT_NEAR(l["mean"].get<double>() * 64 * 40, f["brick_lookups"].get<double>(),
                 1e-6 * 64 * 40 * l["mean"].get<double>());
     EXPECT_EQ(l["max_pixel"].size(), 2u);
+    EXPECT_TRUE(f["ray_costs"]["samples"].contains("p999"));
+    EXPECT_TRUE(f["ray_costs"]["stops"].contains("max"));
   }
   std::filesystem::remove_all(dir);
   test::CommandResult d = test::runGvdp(

@@ -130,8 +130,8 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                 "with --mesh: also the ray cast of the triangles (reference_NNNN.png) and each "
                 "frame's PSNR against it");
   cmd->add_flag("--cost-map", f.costMap,
-                "also each pixel's brick lookups and samples (cost_NNNN.png, a heat map each, and "
-                "their quantiles in stats.json)");
+                "also each pixel's brick lookups, samples and stops (cost_NNNN.png, a heat map "
+                "each, and their quantiles in stats.json)");
   cmd->add_option("--timeline", f.timeline,
                   "also record every frame's GPU-cores timeline: DIR/timeline_NNNN.png and .json");
   cmd->add_option("--video", f.video,

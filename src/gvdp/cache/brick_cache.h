@@ -156,9 +156,11 @@ class BrickCache {
     c.height = costHeight_;
     c.lookups.resize(n);
     c.samples.resize(n);
+    c.stops.resize(n);
     for (size_t p = 0; p < n; ++p) {
       c.lookups[p] = words[RAY_COST_WORDS * p + RAY_COST_LOOKUPS];
       c.samples[p] = words[RAY_COST_WORDS * p + RAY_COST_SAMPLES];
+      c.stops[p] = words[RAY_COST_WORDS * p + RAY_COST_STOPS];
     }
     return c;
   }

@@ -25,12 +25,14 @@ struct CacheStats {
   uint64_t samples = 0, lookups = 0, skips = 0, coarser = 0;
 };
 
-// Each pixel's brick lookups and samples in a frame (FrameSetup::rayCosts), row by row; empty
-// when the frame did not record them. The lookups are the chain of brick decisions a ray waits on
-// one after the other (render/march.h: Marcher::seek); a relaunched ray's marches are summed.
+// Each pixel's brick lookups, samples and stops in a frame (FrameSetup::rayCosts), row by row;
+// empty when the frame did not record them. The lookups are the chain of brick decisions a ray
+// waits on one after the other (render/march.h: Marcher::seek), the stops the chain of
+// productions (its marches that ended on a brick not ready); a relaunched ray's marches are
+// summed. A tiled frame's are those of the renders its image shows (not of attempts replaced).
 struct RayCosts {
   int width = 0, height = 0;
-  std::vector<uint32_t> lookups, samples;
+  std::vector<uint32_t> lookups, samples, stops;
 
   bool empty() const { return lookups.empty(); }
 };

@@ -83,7 +83,9 @@ GVDP_HD GVDP_INLINE void countSlotMark(uint32_t* counters, SlotMark m) {
   if (m == SlotMark::PrefetchUnused) atomicAdd32(&counters[COUNTER_PREFETCH_UNUSED], 1u);
 }
 
-enum RayCostWord : int { RAY_COST_LOOKUPS, RAY_COST_SAMPLES, RAY_COST_WORDS };
+// A ray's costs (CacheView::rayCosts): brick lookups, samples, and stops (marches that ended on
+// a brick not ready: the productions the ray waited on, one after the other).
+enum RayCostWord : int { RAY_COST_LOOKUPS, RAY_COST_SAMPLES, RAY_COST_STOPS, RAY_COST_WORDS };
 
 struct CacheView {
   Clipmap clipmap;
@@ -99,9 +101,9 @@ struct CacheView {
   uint32_t degradeOnFailure;  // nonzero: a failed production degrades the frame (dp, pt)
   uint32_t budgeted;          // nonzero: the frame has a deadline (a time budget)
   float voxelSize0;
-  // Per pixel of the frame, when it records ray costs (FrameSetup::rayCosts; else null): the brick
-  // lookups and the samples of its ray, relaunches summed, at 2 p + RAY_COST_LOOKUPS and
-  // 2 p + RAY_COST_SAMPLES.
+  // Per pixel p of the frame, when it records ray costs (FrameSetup::rayCosts; else null): its
+  // ray's brick lookups, samples and stops (RayCostWord), relaunches summed, at
+  // RAY_COST_WORDS p + the word.
   uint32_t* rayCosts;
 
   // Valid entries of freeSlots: written before the kernels that read it (stream order).

@@ -63,6 +63,14 @@ GVDP_HD GVDP_INLINE void addMarchCounts(const CacheView& cache, int pixel, uint3
   if (coarser) atomicAdd64(&c[MARCH_COARSER], coarser);
 }
 
+// A ray's march that ended on a brick not ready, into its pixel's stops (CacheView::rayCosts).
+GVDP_HD GVDP_INLINE void noteRayStop(const CacheView& cache, int pixel) {
+  if (cache.rayCosts)
+    atomicAdd32(
+        &cache.rayCosts[size_t{RAY_COST_WORDS} * static_cast<uint32_t>(pixel) + RAY_COST_STOPS],
+        1u);
+}
+
 // Pool provides: Vec4f sample<READS>(uint32_t slot, Vec3i brickVoxelOrigin, Vec3f v, uint64_t
 // occupancy), v in voxel coordinates of the brick's level (local), brickVoxelOrigin = 8 * local
 // brick coordinates, zero without a read where the sample's voxels lie in a clear cell, and

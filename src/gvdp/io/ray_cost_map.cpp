@@ -82,25 +82,29 @@ void drawPanel(Image& im, int x0, const RayCosts& c, const std::vector<uint32_t>
 }  // namespace
 
 RayCostSummary summarizeRayCosts(const RayCosts& c) {
-  return {quantilesOf(c.lookups, c.width), quantilesOf(c.samples, c.width)};
+  return {quantilesOf(c.lookups, c.width), quantilesOf(c.samples, c.width),
+          quantilesOf(c.stops, c.width)};
 }
 
 std::string rayCostLine(const RayCostSummary& s) {
-  char line[200];
+  char line[240];
   std::snprintf(line, sizeof line,
-                "lookups per ray %.1f (p99 %u, max %u at %d,%d)  samples %.1f (p99 %u, max %u)",
+                "lookups per ray %.1f (p99 %u, max %u at %d,%d)  samples %.1f (p99 %u, max %u)  "
+                "stops %.2f (p99 %u, max %u at %d,%d)",
                 s.lookups.mean, s.lookups.p99, s.lookups.max, s.lookups.maxX, s.lookups.maxY,
-                s.samples.mean, s.samples.p99, s.samples.max);
+                s.samples.mean, s.samples.p99, s.samples.max, s.stops.mean, s.stops.p99,
+                s.stops.max, s.stops.maxX, s.stops.maxY);
   return line;
 }
 
 Image rayCostImage(const RayCosts& c, const RayCostSummary& s, const std::string& title) {
   const int panel = std::max(c.width, MIN_PANEL);
-  Image im(2 * panel + 3 * MARGIN, TITLE + LABEL + c.height + 4 + LEGEND);
+  Image im(3 * panel + 4 * MARGIN, TITLE + LABEL + c.height + 4 + LEGEND);
   std::fill(im.pixels.begin(), im.pixels.end(), BACKGROUND);
   drawText(im, MARGIN, 5, title, INK);
   drawPanel(im, MARGIN, c, c.lookups, s.lookups, "brick lookups");
   drawPanel(im, 2 * MARGIN + panel, c, c.samples, s.samples, "samples");
+  drawPanel(im, 3 * MARGIN + 2 * panel, c, c.stops, s.stops, "stops (productions waited on)");
   return im;
 }
 

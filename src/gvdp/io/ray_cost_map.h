@@ -1,7 +1,8 @@
 // A frame's ray costs (FrameStats::rayCosts; `gvdp render --cost-map`) as people read them: each
-// pixel's brick lookups and samples as two heat maps side by side, and their distribution. A
-// ray's lookups are the chain of brick decisions it waits on one after the other
-// (render/march.h: Marcher::seek); in a GPU warp the longest chain of its rays sets its time.
+// pixel's brick lookups, samples and stops as three heat maps side by side, and their
+// distribution. A ray's lookups are the chain of brick decisions it waits on one after the other
+// (render/march.h: Marcher::seek; in a GPU warp the longest chain of its rays sets its time), its
+// stops the chain of productions it waited on.
 #pragma once
 
 #include <cstdint>
@@ -21,12 +22,12 @@ struct CostQuantiles {
 };
 
 struct RayCostSummary {
-  CostQuantiles lookups, samples;
+  CostQuantiles lookups, samples, stops;
 };
 
 RayCostSummary summarizeRayCosts(const RayCosts& c);  // c not empty
 std::string rayCostLine(const RayCostSummary& s);     // one line for the console
-// Lookups (left) and samples (right) per pixel, each on a log scale from 0 to its frame's
+// Lookups (left), samples and stops (right) per pixel, each on a log scale from 0 to its frame's
 // largest value (black, purple, red, orange, yellow), with a scale bar and `title` above.
 Image rayCostImage(const RayCosts& c, const RayCostSummary& s, const std::string& title);
 

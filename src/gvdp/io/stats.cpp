@@ -84,7 +84,8 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"degraded", f.degraded}});
   for (size_t i = 0; i < costs.size(); ++i)
     list[i]["ray_costs"] = {{"lookups", quantilesJson(costs[i].lookups)},
-                            {"samples", quantilesJson(costs[i].samples)}};
+                            {"samples", quantilesJson(costs[i].samples)},
+                            {"stops", quantilesJson(costs[i].stops)}};
   j["frames"] = list;
   return j.dump(1);
 }

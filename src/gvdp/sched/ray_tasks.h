@@ -100,6 +100,7 @@ GVDP_HD GVDP_INLINE bool renderRay(const FrameSetup& f, const CacheView& cache, 
   CachedAccess<Pool, QueueRequest, PoolReads::ReadOnly> access{cache, pool, f.lod};
   bool stopped = marches(ray, f.lod, s, access, active) == MarchResult::Stopped;
   access.addCounts(active ? pixel : -1);
+  if (stopped) noteRayStop(cache, pixel);
   bool done = active && s.finished(f.lod);
   if (finished.image) {
     if (done) finished.image[pixel] = resolvePixel(s.colour, ray.d);

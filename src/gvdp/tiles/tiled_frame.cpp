@@ -66,12 +66,14 @@ void copyTileCosts(RayCosts& tile, const PixelTile& at, int width, int height, R
     out.height = height;
     out.lookups.assign(n, 0u);
     out.samples.assign(n, 0u);
+    out.stops.assign(n, 0u);
   }
   for (int y = 0; y < at.height; ++y) {
     size_t to = static_cast<size_t>(at.y + y) * width + at.x,
            from = static_cast<size_t>(y) * at.width;
     std::copy_n(&tile.lookups[from], at.width, &out.lookups[to]);
     std::copy_n(&tile.samples[from], at.width, &out.samples[to]);
+    std::copy_n(&tile.stops[from], at.width, &out.stops[to]);
   }
 }
 

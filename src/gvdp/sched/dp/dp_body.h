@@ -113,6 +113,7 @@ GVDP_HD void dpRenderPixel(const DpContext& ctx, const Pool& pool, Launcher& lau
       storeRelease32(lock, RAY_DONE);
       return;
     }
+    noteRayStop(ctx.cache, pixel);
     storeRelease32(lock, RAY_FREE);
     fenceSeqCst();
     uint32_t e = loadAcquire32(access.stopEntry);

@@ -462,6 +462,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
     }
     if (access.onMiss.missed) claimStop(ctx, access);
     access.onMiss.missed = false;
+    noteRayStop(ctx.cache, static_cast<int>(p));
     if (again && park.leads(access.stopEntry)) {
       uint32_t bricks = lookaheadBricks(ctx);
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
