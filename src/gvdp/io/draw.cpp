@@ -13,15 +13,15 @@ void fillRect(Image& im, int x0, int y0, int x1, int y1, uint32_t c) {
       im.pixels[static_cast<size_t>(y) * im.width + x] = c;
 }
 
-void drawText(Image& im, int x, int y, const std::string& text, uint32_t c) {
+void drawText(Image& im, int x, int y, const std::string& text, uint32_t c, int scale) {
   static char buffer[99999];
   int quads =
       stb_easy_font_print(0, 0, const_cast<char*>(text.c_str()), nullptr, buffer, sizeof buffer);
   const float* v = reinterpret_cast<const float*>(buffer);
   for (int q = 0; q < quads; ++q) {
     const float* p = v + q * 16;  // 4 vertices of (x, y, z, colour)
-    fillRect(im, x + static_cast<int>(p[0]), y + static_cast<int>(p[1]), x + static_cast<int>(p[8]),
-             y + static_cast<int>(p[9]), c);
+    fillRect(im, x + scale * static_cast<int>(p[0]), y + scale * static_cast<int>(p[1]),
+             x + scale * static_cast<int>(p[8]), y + scale * static_cast<int>(p[9]), c);
   }
 }
 

@@ -16,7 +16,7 @@ constexpr uint32_t rgb(int r, int g, int b) {
 
 // Fills [x0, x1) x [y0, y1), clipped to the image.
 void fillRect(Image& im, int x0, int y0, int x1, int y1, uint32_t c);
-// `text` with its top left at (x, y), about 6 pixels a character and 7 high.
-void drawText(Image& im, int x, int y, const std::string& text, uint32_t c);
+// `text` with its top left at (x, y), about 6 pixels a character and 7 high, times `scale`.
+void drawText(Image& im, int x, int y, const std::string& text, uint32_t c, int scale = 1);
 
 }  // namespace gvdp::detail

@@ -54,29 +54,40 @@ double logScale(uint32_t v, uint32_t max) {
   return max == 0 ? 0.0 : std::log1p(static_cast<double>(v)) / std::log1p(static_cast<double>(max));
 }
 
-constexpr int MARGIN = 8, TITLE = 20, LABEL = 24, BAR = 10, LEGEND = BAR + 16;
-constexpr int MIN_PANEL = 240;  // wide enough for a panel's labels
+constexpr int MARGIN = 8, MIN_PANEL = 240;  // a panel wide enough for its labels at scale 1
 const uint32_t BACKGROUND = rgb(255, 255, 255), INK = rgb(20, 20, 20);
 
-void drawPanel(Image& im, int x0, const RayCosts& c, const std::vector<uint32_t>& v,
-               const CostQuantiles& q, const std::string& what) {
+// The picture's layout: its text scaled with the panels (one scale step per 400 pixels).
+struct Layout {
+  int scale, title, label, bar, legend;
+  explicit Layout(int width)
+      : scale(std::max(1, width / 400)),
+        title(20 * scale),
+        label(24 * scale),
+        bar(10 * scale),
+        legend(bar + 16 * scale) {}
+};
+
+void drawPanel(Image& im, const Layout& l, int x0, const RayCosts& c,
+               const std::vector<uint32_t>& v, const CostQuantiles& q, const std::string& what) {
   char label[160];
   std::snprintf(label, sizeof label, "mean %.1f, p99 %u, max %u at (%d, %d)", q.mean, q.p99, q.max,
                 q.maxX, q.maxY);
-  drawText(im, x0, TITLE, what + " per ray", INK);
-  drawText(im, x0, TITLE + LABEL / 2 + 4, label, INK);
-  const int y0 = TITLE + LABEL;
+  drawText(im, x0, l.title, what + " per ray", INK, l.scale);
+  drawText(im, x0, l.title + l.label / 2 + 4, label, INK, l.scale);
+  const int y0 = l.title + l.label;
   for (int y = 0; y < c.height; ++y)
     for (int x = 0; x < c.width; ++x)
       im.pixels[static_cast<size_t>(y0 + y) * im.width + x0 + x] =
           heat(logScale(v[static_cast<size_t>(y) * c.width + x], q.max));
   const int yb = y0 + c.height + 4;
   for (int x = 0; x < c.width; ++x)
-    fillRect(im, x0 + x, yb, x0 + x + 1, yb + BAR,
+    fillRect(im, x0 + x, yb, x0 + x + 1, yb + l.bar,
              heat(static_cast<double>(x) / std::max(1, c.width - 1)));
-  drawText(im, x0, yb + BAR + 3, "0", INK);
+  drawText(im, x0, yb + l.bar + 3, "0", INK, l.scale);
   std::string top = std::to_string(q.max) + " (log scale)";
-  drawText(im, x0 + c.width - 6 * static_cast<int>(top.size()), yb + BAR + 3, top, INK);
+  drawText(im, x0 + c.width - 6 * l.scale * static_cast<int>(top.size()), yb + l.bar + 3, top, INK,
+           l.scale);
 }
 
 }  // namespace
@@ -99,12 +110,13 @@ std::string rayCostLine(const RayCostSummary& s) {
 
 Image rayCostImage(const RayCosts& c, const RayCostSummary& s, const std::string& title) {
   const int panel = std::max(c.width, MIN_PANEL);
-  Image im(3 * panel + 4 * MARGIN, TITLE + LABEL + c.height + 4 + LEGEND);
+  const Layout l(c.width);
+  Image im(3 * panel + 4 * MARGIN, l.title + l.label + c.height + 4 + l.legend);
   std::fill(im.pixels.begin(), im.pixels.end(), BACKGROUND);
-  drawText(im, MARGIN, 5, title, INK);
-  drawPanel(im, MARGIN, c, c.lookups, s.lookups, "brick lookups");
-  drawPanel(im, 2 * MARGIN + panel, c, c.samples, s.samples, "samples");
-  drawPanel(im, 3 * MARGIN + 2 * panel, c, c.stops, s.stops, "stops (productions waited on)");
+  drawText(im, MARGIN, 5, title, INK, l.scale);
+  drawPanel(im, l, MARGIN, c, c.lookups, s.lookups, "brick lookups");
+  drawPanel(im, l, 2 * MARGIN + panel, c, c.samples, s.samples, "samples");
+  drawPanel(im, l, 3 * MARGIN + 2 * panel, c, c.stops, s.stops, "stops (productions waited on)");
   return im;
 }
 
