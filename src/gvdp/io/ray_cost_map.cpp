@@ -71,7 +71,7 @@ struct Layout {
 void drawPanel(Image& im, const Layout& l, int x0, const RayCosts& c,
                const std::vector<uint32_t>& v, const CostQuantiles& q, const std::string& what) {
   char label[160];
-  std::snprintf(label, sizeof label, "mean %.1f, p99 %u, max %u at (%d, %d)", q.mean, q.p99, q.max,
+  std::snprintf(label, sizeof label, "mean %.3g, p99 %u, max %u at (%d, %d)", q.mean, q.p99, q.max,
                 q.maxX, q.maxY);
   drawText(im, x0, l.title, what + " per ray", INK, l.scale);
   drawText(im, x0, l.title + l.label / 2 + 4, label, INK, l.scale);
