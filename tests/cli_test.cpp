@@ -56,6 +56,7 @@ TEST(Cli, BadInputIsOneLineNamingTheValueWithStatus2) {
   expectInputError("render --backend cpu --width 30000 --height 30000" + out, "30000x30000");
   expectInputError("render --backend cpu --tiles 0" + out, "--tiles '0'");
   expectInputError("render --backend cpu --tiles lots" + out, "--tiles 'lots'");
+  expectInputError("render --backend cpu --scheduler direct --cost-map" + out, "--cost-map");
   expectInputError("render --backend cpu --tiles 257" + out, "--tiles '257'");
   expectInputError("render --backend cpu --tiles off --width 4096 --height 4096" + out,
                    "4096x4096 for --tiles off");
