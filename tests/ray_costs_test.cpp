@@ -125,6 +125,8 @@ TEST(RayCosts, CostMapCommandWritesPicturesAndQuantiles) {
       dir);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("lookups per ray"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" ray_costs "), std::string::npos)
+      << "in the memory report: " << r.output;
   for (const char* name : {"/cost_0000.png", "/cost_0001.png"}) {
     Image im = readPng(dir + name);
     EXPECT_GT(im.width, 3 * 64) << name;

@@ -166,10 +166,13 @@ class BrickCache {
   }
 
   MemoryReport memory() const {
-    return {{"brick_pool", bytesOf(texels_)},         {"brick_occupancy", bytesOf(occupancy_)},
-            {"indirection_table", bytesOf(entries_)}, {"inverse_table", bytesOf(inverse_)},
-            {"timestamps", bytesOf(timestamps_)},     {Ops::LRU_NAME, ops_.lruBytes()},
-            {"request_queue", bytesOf(requests_)}};
+    MemoryReport m{
+        {"brick_pool", bytesOf(texels_)},         {"brick_occupancy", bytesOf(occupancy_)},
+        {"indirection_table", bytesOf(entries_)}, {"inverse_table", bytesOf(inverse_)},
+        {"timestamps", bytesOf(timestamps_)},     {Ops::LRU_NAME, ops_.lruBytes()},
+        {"request_queue", bytesOf(requests_)}};
+    if (rayCosts_.size()) m.push_back({"ray_costs", bytesOf(rayCosts_)});  // render --cost-map
+    return m;
   }
 
   // The raw tables, in the backend's memory (tests read the CPU ones).

@@ -27,7 +27,7 @@ struct RayCostSummary {
 
 RayCostSummary summarizeRayCosts(const RayCosts& c);  // c not empty
 std::string rayCostLine(const RayCostSummary& s);     // one line for the console
-// Lookups (left), samples and stops (right) per pixel, each on a log scale from 0 to its frame's
+// Lookups, samples and stops per pixel, left to right, each on a log scale from 0 to its frame's
 // largest value (black, purple, red, orange, yellow), with a scale bar and `title` above.
 Image rayCostImage(const RayCosts& c, const RayCostSummary& s, const std::string& title);
 
