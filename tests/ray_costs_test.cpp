@@ -148,4 +148,23 @@ TEST(RayCosts, CostMapCommandWritesPicturesAndQuantiles) {
   std::filesystem::remove_all(dir);
 }
 
+// The render-only frame's map beside its timeline (the frame whose longest warps the map explains).
+TEST(RayCosts, TimelineWritesTheFramesCostMap) {
+  std::string dir = test::tempDir("timeline_cost_map");
+  std::filesystem::create_directories(dir);
+  test::CommandResult r = test::runGvdp(
+      "timeline --backend cpu --scheduler pt --frame 2 --again --width 64 --height 40 --out " +
+      dir + "/t.png --cost-map " + dir + "/cost.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("lookups per ray"), std::string::npos) << r.output;
+  Image im = readPng(dir + "/cost.png");
+  EXPECT_GT(im.width, 3 * 64);
+  std::filesystem::remove_all(dir);
+  test::CommandResult d = test::runGvdp(
+      "timeline --backend cpu --scheduler direct --frame 1 --width 32 --height 20 --out " + dir +
+      "/t.png --cost-map " + dir + "/cost.png");
+  EXPECT_EQ(d.status, 2) << d.output;
+  EXPECT_NE(d.output.find("--cost-map"), std::string::npos) << d.output;
+}
+
 }  // namespace gvdp::detail

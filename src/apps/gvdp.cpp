@@ -402,19 +402,21 @@ int runRender(const RenderFlags& flags) {
 // gvdp timeline: renders frames 0..K and draws the timeline of frame K, or (again) of frame K's
 // pose rendered once more from the cache frame K left: the render-only floor (`gvdp bench`'s).
 int runTimeline(const RenderFlags& flags, int frame, bool again, const std::string& png,
-                const std::string& trace) {
+                const std::string& trace, const std::string& costMap) {
   GVDP_INPUT_CHECK(!flags.frames,
                    "timeline takes --frame K (it renders frames 0..K), not --frames ",
                    flags.frames.value_or(0));
   GVDP_INPUT_CHECK(frame >= 0 && frame <= 100000, "bad --frame ", frame, " (expected 0..100000)");
   RenderFlags f = flags;
   f.frames = frame + 1;
+  f.costMap = !costMap.empty();
   SequenceOptions o = toOptions(f);
   o.again = again ? 1 : 0;
   o.scheduler.timeline = true;
   OutputPaths outputs;
   outputs.file(png);
   if (!trace.empty()) outputs.file(trace);
+  if (!costMap.empty()) outputs.file(costMap);
   outputs.keep();
   FrameStats last;
   renderSequence(o, [&](const Image&, const FrameStats& s) { last = s; });
@@ -434,6 +436,11 @@ int runTimeline(const RenderFlags& flags, int frame, bool again, const std::stri
               timelineSummary(timelineStats(t.records, t.lanes)).c_str(),
               t.overflow ? " (records overflowed)" : "", png.c_str(), trace.empty() ? "" : ", ",
               trace.c_str());
+  if (!costMap.empty()) {
+    RayCostSummary c = summarizeRayCosts(last.rayCosts);
+    writePng(rayCostImage(last.rayCosts, c, title), costMap);
+    std::printf("%s\nwrote %s\n", rayCostLine(c).c_str(), costMap.c_str());
+  }
   return 0;
 }
 
@@ -698,7 +705,7 @@ int run(int argc, char** argv) {
   addRenderFlags(renderCmd, render);
   RenderFlags timeline;
   int timelineFrame = 5;
-  std::string timelinePng = "timeline.png", timelineTrace;
+  std::string timelinePng = "timeline.png", timelineTrace, timelineCostMap;
   bool timelineAgain = false;
   CLI::App* timelineCmd =
       app.add_subcommand("timeline", "draw the GPU-cores timeline of one frame (paper Fig. 5)");
@@ -707,6 +714,9 @@ int run(int argc, char** argv) {
                           "the frame to record (frames before it warm up)");
   timelineCmd->add_option("--out", timelinePng, "timeline picture (default timeline.png)");
   timelineCmd->add_option("--trace", timelineTrace, "Chrome trace-event JSON (Perfetto)");
+  timelineCmd->add_option("--cost-map", timelineCostMap,
+                          "also the frame's cost map: each pixel's brick lookups, samples and "
+                          "stops (a PNG; its counting adds a little to the frame timed)");
   timelineCmd->add_flag("--again", timelineAgain,
                         "record the frame's pose rendered once more, from the cache the frame "
                         "filled (the render-only floor)");
@@ -785,7 +795,8 @@ int run(int argc, char** argv) {
   }
   if (renderCmd->parsed()) return runRender(render);
   if (timelineCmd->parsed())
-    return runTimeline(timeline, timelineFrame, timelineAgain, timelinePng, timelineTrace);
+    return runTimeline(timeline, timelineFrame, timelineAgain, timelinePng, timelineTrace,
+                       timelineCostMap);
   if (benchCmd->parsed()) return runBenchCommand(bench);
   if (serveCmd->parsed()) return runServe(serve);
   if (scenesCmd->parsed()) return runScenes();
