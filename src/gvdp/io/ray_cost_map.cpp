@@ -24,11 +24,11 @@ CostQuantiles quantilesOf(const std::vector<uint32_t>& v, int width) {
   q.mean = sum / static_cast<double>(v.size());
   std::vector<uint32_t> sorted = v;
   std::sort(sorted.begin(), sorted.end());
-  auto rank =
-      [&](double f) {  // nearest rank: the smallest value with at least f of them at most it
-        size_t k = static_cast<size_t>(std::ceil(f * static_cast<double>(sorted.size())));
-        return sorted[std::min(sorted.size(), std::max<size_t>(k, 1)) - 1];
-      };
+  // Nearest rank: the smallest value with at least a share f of the values at most it.
+  auto rank = [&](double f) {
+    size_t k = static_cast<size_t>(std::ceil(f * static_cast<double>(sorted.size())));
+    return sorted[std::min(sorted.size(), std::max<size_t>(k, 1)) - 1];
+  };
   q.p50 = rank(0.5);
   q.p99 = rank(0.99);
   q.p999 = rank(0.999);

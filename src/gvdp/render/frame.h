@@ -24,7 +24,7 @@ struct FrameSetup {
   int frameIndex;
   bool coldCache;         // start from an empty cache (a degraded frame's retry: tiled_frame.h)
   TimelineView timeline;  // GPU-cores timeline of this frame (records null: off)
-  bool rayCosts;          // record each pixel's brick lookups and samples (FrameStats::rayCosts)
+  bool rayCosts;          // record each pixel's lookups, samples, stops (FrameStats::rayCosts)
 
   // The ray of pixel (px, py) of this frame: pixel (tileX + px, tileY + py) of the image.
   GVDP_HD Ray primaryRay(int px, int py) const {

@@ -80,7 +80,7 @@ struct SchedulerOptions {
   uint32_t poolBricks = 0;       // 0: the backend's default
   uint32_t pendingLaunches = 0;  // dp: CDP pending-launch buffer (tasks on the CPU); 0: default
   bool timeline = false;         // record the GPU-cores timeline of every frame (profile/)
-  bool rayCosts = false;         // record each pixel's brick lookups and samples (cached ones)
+  bool rayCosts = false;         // record each pixel's lookups, samples, stops (cached ones)
   uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt: missing bricks a stopped ray claims ahead
   uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt: at least this many in a frame's tail
   uint32_t prefetch = DEFAULT_PREFETCH;             // pt: a prefetch ray per N x N pixels (0: none)
@@ -145,7 +145,7 @@ class Scheduler {
   virtual ~Scheduler();
   // Records the timeline of the following frames into FrameStats::timeline.
   void recordTimeline(std::unique_ptr<FrameTimeline> t) { timeline_ = std::move(t); }
-  // Records each pixel's brick lookups and samples of the following frames into
+  // Records each pixel's brick lookups, samples and stops of the following frames into
   // FrameStats::rayCosts (cached schedulers).
   void recordRayCosts(bool on) { rayCosts_ = on; }
   // Renders `frame` into `out` (resized to the frame). Frames of a sequence come in order.
