@@ -68,7 +68,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     if (f + 1 < s.frames) prefetched += st.cache.prefetched;
     c.frameMs.push_back(st.ms);
     c.frameWallMs.push_back(wall);
-    c.frameBricks.push_back(st.cache.produced + st.cache.empty);
+    c.frameBricks.push_back(st.cache.produced + st.cache.empty + st.cache.clear);
     bricks += st.cache.produced;
     unsampled += st.cache.unsampled;
     samples += st.cache.samples;

@@ -1,6 +1,6 @@
 // Indirection-table entries and brick keys (paper 3.2). An entry is a uint32: a brick-pool slot,
 // or a state above every slot: MISSING, EMPTY (with the empty box of bricks around it:
-// emptyEntry), IN_PRODUCTION, or (pt) in production by the production task
+// emptyEntry), CLEAR, IN_PRODUCTION, or (pt) in production by the production task
 // PRODUCTION_TASK + id, whose rays wait on that task's list. A BrickKey names a
 // brick by level and global brick coordinates (the inverse table stores one per slot).
 #pragma once
@@ -14,6 +14,13 @@ namespace gvdp::detail {
 
 constexpr uint32_t ENTRY_MISSING = 0xffffffffu;
 constexpr uint32_t ENTRY_IN_PRODUCTION = 0xfffffffeu;
+// A CLEAR brick was produced and every one of its samples (the border's too) is zero, but the
+// producer did not flag it empty: a finer level may hold something there (the empty flag's
+// margin, world/producer.h). It samples zero at its own level, as a resident brick whose cells
+// are all clear would, and holds no slot (cache/produce.h: commitBrick). Perlin's and fbm's
+// walkthroughs leave two thirds of their resident bricks all zero, forest's and the spheres' a
+// quarter (frame 12, CPU, 300x200 at --lod-width 1500).
+constexpr uint32_t ENTRY_CLEAR = 0xfffffffdu;
 constexpr uint32_t MAX_SLOTS = 0x80000000u;  // slot entries are below every special value
 // A slot entry published in the running frame carries ENTRY_FRESH: a reader that may run while
 // bricks are published (PoolReads::Coherent, cached_access.h) acquires such an entry before it
@@ -33,8 +40,7 @@ constexpr uint32_t ENTRY_EMPTY = 0xf0000000u;
 constexpr uint32_t EMPTY_CODES_MASK = 0xffffffu;
 static_assert(ENTRY_EMPTY >= ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS,
               "EMPTY entries overlap the production-task names");
-static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_IN_PRODUCTION,
-              "EMPTY entries overlap the states");
+static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_CLEAR, "EMPTY entries overlap the states");
 
 GVDP_HD GVDP_INLINE uint32_t emptyEntry(const EmptyReachCodes& c) {
   return ENTRY_EMPTY | c.packed();

@@ -15,6 +15,7 @@ namespace gvdp::detail {
 
 struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
+  uint64_t clear = 0;       // bricks produced all zero, without a slot (brick_key.h: ENTRY_CLEAR)
   uint64_t resident = 0;    // slots holding a brick at the end of the frame
   uint64_t unsampled = 0;   // bricks produced in the frame that no ray sampled (over-production)
   uint64_t prefetched = 0;  // bricks produced in the frame for the next one (pt's prefetch)
@@ -49,11 +50,12 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.produced = counters[COUNTER_PRODUCED];
   s.empty = counters[COUNTER_EMPTY];
   s.failed = counters[COUNTER_FAILED];
+  s.clear = counters[COUNTER_CLEAR];
   s.evicted = counters[COUNTER_EVICTED];
   s.unsampled = counters[COUNTER_UNSAMPLED];
   s.prefetched = counters[COUNTER_PREFETCHED];
   s.prefetchUnused = counters[COUNTER_PREFETCH_UNUSED];
-  s.requested = s.produced + s.empty + s.failed;  // every request ends in one of the three
+  s.requested = s.produced + s.empty + s.clear + s.failed;  // every request ends in one of them
   s.resident = resident;
   s.refills = refills;
   uint64_t march[MARCH_COUNTER_COUNT];

@@ -38,6 +38,7 @@ enum CacheCounter : int {
   // The free slot list's length (freeListLength), written on the backend by the LRU sort: the
   // host never waits for it at a frame's start.
   COUNTER_FREE_COUNT,
+  COUNTER_CLEAR,  // bricks found clear (brick_key.h: ENTRY_CLEAR)
   // The march's 64-bit counters (MarchCounter), in a 128-byte line of their own: every warp's
   // march adds to them, and a load of a word in a line under atomics waits behind them (the
   // degraded test's load of COUNTER_FAILED did, on pt's march: ncu, H100).

@@ -1,5 +1,6 @@
 // The cached side of Algorithm 1: how a ray reads the clipmap. A resident brick is sampled from
-// the pool (and its timestamp touched); an EMPTY brick is skipped with the empty box its entry
+// the pool (and its timestamp touched), a CLEAR one as a resident brick whose cells are all clear
+// (zero, with no read); an EMPTY brick is skipped with the empty box its entry
 // names (brick_key.h: emptyEntry), a missing one under an EMPTY coarser ancestor with that
 // ancestor's; a MISSING brick is claimed with a CAS (the winner queues its production) and the ray
 // stops, as on IN_PRODUCTION. In a degraded frame (no free slot left) nothing is produced: the
@@ -140,6 +141,21 @@ struct CachedAccess {
     return {BrickState::Resident, slot, level, brick, pool.template loadOccupancy<READS>(slot)};
   }
 
+  // A CLEAR brick (brick_key.h): a resident one whose cells are all clear, with no slot to read or
+  // stamp (MAX_SLOTS: a read past the pool, should one ever skip the cells' test); it samples
+  // zero at its level, and stands in (as zero) for finer bricks like any.
+  GVDP_HD static BrickLookup clear(int level, Vec3i brick) {
+    return {BrickState::Resident, MAX_SLOTS, level, brick, uint64_t{0}};
+  }
+
+  // A brick that can be sampled, resident or CLEAR: as resident() or clear().
+  GVDP_HD static bool shown(uint32_t e) {
+    return isSlot(e) || e == ENTRY_CLEAR;
+  }
+  GVDP_HD BrickLookup shownBrick(const uint32_t* entry, uint32_t e, int level, Vec3i brick) const {
+    return isSlot(e) ? resident(entry, e, level, brick) : clear(level, brick);
+  }
+
   // An EMPTY brick, with the box its entry names.
   GVDP_HD static BrickLookup empty(int level, Vec3i brick, uint32_t entry) {
     return {BrickState::Empty, 0u, level, brick, ~uint64_t{0}, entry & EMPTY_CODES_MASK};
@@ -182,7 +198,7 @@ struct CachedAccess {
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
     uint32_t e = loadRelaxed32(entry);
-    if (isSlot(e)) return resident(entry, e, level, brick);
+    if (shown(e)) return shownBrick(entry, e, level, brick);
     if (isEmptyEntry(e)) return empty(level, brick, e);
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production. The
     // frame's degraded state is read only where it decides (a resident ancestor, or none EMPTY):
@@ -202,7 +218,7 @@ struct CachedAccess {
       uint32_t* at = entryOf(up, a);
       uint32_t ea = peek(at);
       if (isEmptyEntry(ea)) return empty(up, a, ea);
-      if (isSlot(ea) && fellBack()) return showCoarser(resident(at, ea, up, a));
+      if (shown(ea) && fellBack()) return showCoarser(shownBrick(at, ea, up, a));
     }
     if (fellBack()) return showCoarser({BrickState::Empty, 0u, level, brick});  // nothing
     if (late()) return showCoarser(lateStandIn(level, brick, e, entry));
@@ -251,7 +267,7 @@ struct CachedAccess {
       a = halfFloor(a);
       uint32_t* at = entryOf(up, a);
       uint32_t ea = peek(at);
-      if (isSlot(ea)) return resident(at, ea, up, a);
+      if (shown(ea)) return shownBrick(at, ea, up, a);
     }
     return {BrickState::Empty, 0u, level, brick};
   }

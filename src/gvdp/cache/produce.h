@@ -343,41 +343,50 @@ GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, con
 }
 
 // Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with
-// PER * size >= BRICK_SAMPLE_COUNT): the leader takes a slot (none for an empty brick), each
-// member writes its samples staged(k, sample) to it, the group ORs the occupancy cells of its
-// nonzero samples (brick_pool.h) and the leader writes them, each member fences (device scope:
-// other blocks read the pool), and the leader publishes the entry once every member's writes
-// are fenced; an empty brick is published by the group (publishEmpty).
+// PER * size >= BRICK_SAMPLE_COUNT): the group ORs the occupancy cells of its nonzero samples
+// staged(k, sample) (brick_pool.h); unless none is set (a CLEAR brick: no slot, nothing written,
+// brick_key.h) the leader takes a slot, each member writes its samples to it and the leader the
+// cells, each member fences (device scope: other blocks read the pool), and the leader
+// publishes the entry once every member's writes are fenced; an empty brick is published by the
+// group (publishEmpty).
 template <int PER, class Scope, class P, class Staged>
 GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, const CacheView& cache,
                                      const BrickPool& pool, const BrickKey& key, bool empty,
                                      Staged staged) {
+  if (empty) {
+    publishEmpty(group, producer, cache, key);
+    return;
+  }
+  uint64_t cells = 0;
+  GVDP_UNROLL
+  for (int k = 0; k < PER; ++k) {
+    int s = group.rank() + k * group.size();
+    if (s < BRICK_SAMPLE_COUNT && staged(k, s) != 0u)
+      cells |= occupancyCellsOf(brickSampleIndex(s));
+  }
+  uint32_t low = group.any(static_cast<uint32_t>(cells));
+  uint32_t high = group.any(static_cast<uint32_t>(cells >> 32));
+  uint64_t occupancy = uint64_t{high} << 32 | low;
+  if (occupancy == 0u) {
+    if (group.rank() == 0) publishBrick(cache, key, ENTRY_CLEAR);
+    return;
+  }
   uint32_t slot = 0;
-  if (group.rank() == 0) slot = empty ? MAX_SLOTS : takeFreeSlot(cache);
+  if (group.rank() == 0) slot = takeFreeSlot(cache);
   slot = group.broadcast(slot);
-  if (!empty && slot != MAX_SLOTS) {
-    uint64_t cells = 0;
+  if (slot != MAX_SLOTS) {
     GVDP_UNROLL
     for (int k = 0; k < PER; ++k) {
       int s = group.rank() + k * group.size();
-      if (s < BRICK_SAMPLE_COUNT) {
-        Rgba8 value = staged(k, s);
-        pool.write(slot, s, value);
-        if (value != 0u) cells |= occupancyCellsOf(brickSampleIndex(s));
-      }
+      if (s < BRICK_SAMPLE_COUNT) pool.write(slot, s, staged(k, s));
     }
-    uint32_t low = group.any(static_cast<uint32_t>(cells));
-    uint32_t high = group.any(static_cast<uint32_t>(cells >> 32));
-    if (group.rank() == 0) pool.occupancy[slot] = uint64_t{high} << 32 | low;
+    if (group.rank() == 0) pool.occupancy[slot] = occupancy;
 #if GVDP_IS_GPU_CODE
     __threadfence();
 #endif
   }
   group.sync();
-  if (empty)
-    publishEmpty(group, producer, cache, key);
-  else if (group.rank() == 0)
-    publishBrick(cache, key, slot);
+  if (group.rank() == 0) publishBrick(cache, key, slot);
 }
 
 // Algorithm 2 whole, by a group that keeps its samples in registers: member r evaluates the

@@ -4,7 +4,8 @@
 // stride x stride pixels, march like the direct renderer (the producer sampled, so they end where
 // the frame's rays end) and insert each brick they enter, and (node, brick) for each depth of the
 // quadtree, into one hash set (bricks the producer's bound clears are EMPTY: no slot); each brick
-// found is then classified as production would (any sample not flagged empty: it takes a slot);
+// found is then classified as production would (any sample not zero: it takes a slot; a brick of
+// zeros is EMPTY or CLEAR, cache/brick_key.h);
 // each (node, brick) of an occupied brick counts one for its node. The values are thus the exact
 // distinct counts of the sampled rays per node (a max-like mipmap: a node's value is at most its
 // children's sum, and at least each child's), not sums of block counts, which count every brick
@@ -50,7 +51,7 @@ struct ImportanceSetup {
   int levels;         // K: the quadtree covers 2^K x 2^K blocks
   int raysX, raysY;   // ceil(width / stride) x ceil(height / stride)
   uint64_t* table;    // open addressing, IMPORTANCE_FREE where free; size tableMask + 1
-  uint8_t* occupied;  // per table slot: a brick key whose brick production would not find empty
+  uint8_t* occupied;  // per table slot: a brick key whose brick production would give a slot
   uint64_t* bricks;   // the slots of the bricks' own keys, in insertion order (tableMask + 1)
   uint64_t tableMask;
   uint32_t maxEntries;  // past it the table counts as full (3/4 of its size)
@@ -174,8 +175,8 @@ GVDP_HD GVDP_INLINE void countRayBricks(const FrameSetup& frame, const P& produc
   march(r, frame.lod, state, access);
 }
 
-// Pass 2, per listed brick: production's verdict (a sample not flagged empty: the brick takes a
-// slot), read from the producer as production reads it; the samples first, first + step, ...
+// Pass 2, per listed brick: production's verdict (a sample not zero: the brick takes a slot),
+// read from the producer as production reads it; the samples first, first + step, ...
 // (a thread per brick on the CPU, a warp on the GPU).
 GVDP_HD GVDP_INLINE BrickKey importanceBrick(const FrameSetup& frame, uint64_t key) {
   constexpr int B = IMPORTANCE_COORD_BITS;
@@ -192,7 +193,7 @@ GVDP_HD GVDP_INLINE BrickKey importanceBrick(const FrameSetup& frame, uint64_t k
 template <class P>
 GVDP_HD GVDP_INLINE bool importanceSampleOccupied(const P& producer, const BrickKey& brick,
                                                   int sample) {
-  return !produceBrickSample(producer, brick, sample).empty;
+  return produceBrickSample(producer, brick, sample).rgba != 0u;
 }
 
 // Pass 3, per table slot: a node's key counts one for the node when its brick is occupied.
