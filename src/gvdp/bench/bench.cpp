@@ -69,7 +69,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     c.frameMs.push_back(st.ms);
     c.frameWallMs.push_back(wall);
     c.frameBricks.push_back(st.cache.produced + st.cache.empty + st.cache.clear);
-    bricks += st.cache.produced;
+    bricks += st.cache.produced + st.cache.clear;
     unsampled += st.cache.unsampled;
     samples += st.cache.samples;
     lookups += st.cache.lookups;

@@ -36,7 +36,9 @@ struct BenchCell {
   // Per ray and frame, over the measured frames: samples, brick lookups, empty-space skips.
   double samplesPerRay, lookupsPerRay, skipsPerRay;
   // Bricks produced in a measured frame that no ray of it sampled (a prefetched one: of the next
-  // frame), over the bricks produced.
+  // frame), over the bricks produced (bricksPerFrame: those given a slot and the CLEAR ones). Only
+  // a brick with a slot carries the timestamp that tells (cache_view.h): an unsampled CLEAR brick
+  // is not counted, so this is a lower bound of the work spent on bricks no ray read.
   double overproduction;
   // pt's prefetch: bricks prefetched per frame, and the share of them the next frame sampled.
   double prefetchedPerFrame = 0, prefetchUsed = 0;
@@ -46,7 +48,7 @@ struct BenchCell {
   uint64_t memoryBytes;
   std::vector<double> frameMs;        // CUDA events (GPU) or wall clock (CPU), per measured frame
   std::vector<double> frameWallMs;    // host wall clock around each frame's render() call
-  std::vector<uint64_t> frameBricks;  // bricks produced and EMPTY, per measured frame
+  std::vector<uint64_t> frameBricks;  // bricks produced, CLEAR and EMPTY, per measured frame
   // The slowest measured frame (frame_stats.h: slowestFrame): its index on the path (warm-up
   // frames counted), its bricks over the cell's mean, and its time over the time the cell's other
   // frames predict for its bricks.

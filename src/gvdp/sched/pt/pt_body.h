@@ -641,9 +641,13 @@ inline PtContext makePtContext(const FrameSetup& f, const CacheView& cache, RayS
   ctx.freeIds = ring(b.freeSlots, b.layout.freeCapacity(), PT_FREE_HEAD);
   ctx.lookaheadIds = ring(b.lookaheadSlots, PtLayout::lookaheadCapacity(), PT_LOOK_HEAD);
   ctx.firstLookaheadId = b.layout.freeIds();
-  ctx.lookahead = lookahead;
+  // A render from an empty cache (a degraded tile's retry, tiles/tiled_frame.cpp) overflows the
+  // pool exactly when the bricks its rays need outnumber it, for every scheduler: claims ahead of
+  // the rays would make that depend on the claims, hence on timing (pt's tiles of a 100-brick
+  // forest differed from sp's once the all-zero bricks took no slots, H200).
+  ctx.lookahead = f.coldCache ? 0u : lookahead;
   ctx.tailRays = static_cast<uint32_t>(f.pixelCount() / PT_TAIL_SHARE);
-  ctx.tailLookahead = tailLookahead;
+  ctx.tailLookahead = f.coldCache ? 0u : tailLookahead;
   ctx.prefetchIds = ring(b.prefetchSlots, PtLayout::prefetchCapacity(), PT_PREFETCH_HEAD);
   ctx.firstPrefetchId = b.layout.firstPrefetchId();
   ctx.taskKey = b.taskKey;
