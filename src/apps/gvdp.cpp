@@ -357,9 +357,11 @@ int runRender(const RenderFlags& flags) {
         frames.push_back(s);
         frames.back().rayCosts = {};  // the maps are in the pictures
         std::printf(
-            "frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  unfinished %lld%s%s\n",
+            "frame %4d  %9.2f ms  %8.1f FPS  passes %3d  bricks %6llu  clear %6llu  unfinished "
+            "%lld%s%s\n",
             s.index, s.ms, 1000.0 / std::max(s.ms, 1e-6), s.passes,
             static_cast<unsigned long long>(s.cache.produced),
+            static_cast<unsigned long long>(s.cache.clear),
             static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "",
             s.cache.coarser ? ("  coarser " + std::to_string(s.cache.coarser)).c_str() : "");
         if (s.launches && o.scheduler.kind == SchedulerKind::Pt)
