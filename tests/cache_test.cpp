@@ -33,6 +33,27 @@ FrameSetup frameAt(Vec3d position, int index) {
   return makeFrame({position, 0.3f, 0.0f}, scene.world.voxelSize0(), 64, 40, 5, index);
 }
 
+// Marches a ray of frame f from the eye, producing on this thread the bricks it asks for (then
+// onProduced(key) for each), until it finishes: its state, the colour the march gave while the
+// cache filled.
+template <class World, class OnProduced>
+RayState marchFilling(const Ray& ray, const FrameSetup& f, BrickCacheCpu& cache, const World& world,
+                      OnProduced onProduced) {
+  CacheView v = cache.view();
+  BrickPool pool = cache.pool();
+  RayState s = initialRayState();
+  for (;;) {
+    CachedAccess<BrickPool> access{v, pool, f.lod};
+    if (march(ray, f.lod, s, access) == MarchResult::Finished) return s;
+    for (uint32_t r = 0; r < v.counters[COUNTER_REQUESTS]; ++r) {
+      BrickKey key = cache.requests()[r];
+      produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, world, v, pool, key);
+      onProduced(key);
+    }
+    cache.clearRequests();
+  }
+}
+
 // Every resident slot is mapped by exactly one in-window entry and maps back to it; nothing is
 // left in production. At a frame's start (`settled`) no entry is marked fresh.
 void expectConsistent(const BrickCacheCpu& c, bool settled) {
@@ -666,14 +687,7 @@ void expectSameMarches(const char* scene, A makeA, B makeB, MarchB marchB = {},
   BrickPool pool = cache.pool();
   for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
     Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
-    RayState filling = initialRayState();
-    for (;;) {
-      CachedAccess<BrickPool> access{v, pool, f.lod};
-      if (march(ray, f.lod, filling, access) == MarchResult::Finished) break;
-      for (uint32_t r = 0; r < v.counters[COUNTER_REQUESTS]; ++r)
-        produceBrick<BRICK_SAMPLE_COUNT>(ThreadScope{}, info.world, v, pool, cache.requests()[r]);
-      cache.clearRequests();
-    }
+    marchFilling(ray, f, cache, info.world, [](const BrickKey&) {});
     RayState sa = initialRayState(), sb = initialRayState();
     auto a = makeA(v, pool, f.lod);
     auto b = makeB(v, pool, f.lod);
@@ -701,34 +715,26 @@ TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
   int clear = 0, resident = 0;
   for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
     Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
-    RayState filling = initialRayState();
-    for (;;) {
-      CachedAccess<BrickPool> access{v, pool, f.lod};
-      if (march(ray, f.lod, filling, access) == MarchResult::Finished) break;
-      for (uint32_t r = 0; r < v.counters[COUNTER_REQUESTS]; ++r) {
-        BrickKey key = cache.requests()[r];
-        produce(cache, v, key);
-        uint32_t e = cache.entries()[v.clipmap.entryIndex(key.level, key.brick)];
-        if (isEmptyEntry(e)) continue;
-        bool zero = true, flagged = true;
-        for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
-          VoxelSample x = produceBrickSample(info.world, key, s);
-          zero = zero && x.rgba == 0u;
-          flagged = flagged && x.empty;
-        }
-        ASSERT_FALSE(flagged) << "an empty brick not published EMPTY";
-        if (e == ENTRY_CLEAR) {
-          ASSERT_TRUE(zero) << "a CLEAR brick with a nonzero sample, level " << key.level;
-          ++clear;
-        } else {
-          ASSERT_TRUE(isSlot(e));
-          ASSERT_FALSE(zero) << "an all-zero brick given slot " << slotOf(e);
-          ASSERT_NE(pool.occupancy[slotOf(e)], 0u);
-          ++resident;
-        }
+    RayState filling = marchFilling(ray, f, cache, info.world, [&](const BrickKey& key) {
+      uint32_t e = cache.entries()[v.clipmap.entryIndex(key.level, key.brick)];
+      if (isEmptyEntry(e)) return;
+      bool zero = true, flagged = true;
+      for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s) {
+        VoxelSample x = produceBrickSample(info.world, key, s);
+        zero = zero && x.rgba == 0u;
+        flagged = flagged && x.empty;
       }
-      cache.clearRequests();
-    }
+      ASSERT_FALSE(flagged) << "an empty brick not published EMPTY";
+      if (e == ENTRY_CLEAR) {
+        ASSERT_TRUE(zero) << "a CLEAR brick with a nonzero sample, level " << key.level;
+        ++clear;
+      } else {
+        ASSERT_TRUE(isSlot(e));
+        ASSERT_FALSE(zero) << "an all-zero brick given slot " << slotOf(e);
+        ASSERT_NE(pool.occupancy[slotOf(e)], 0u);
+        ++resident;
+      }
+    });
     RayState again = initialRayState();
     CachedAccess<BrickPool> access{v, pool, f.lod};
     ASSERT_EQ(march(ray, f.lod, again, access), MarchResult::Finished) << pixel;
@@ -823,14 +829,8 @@ TEST(Cache, ClearCellsAndBricksAreSkippedWithoutChangingAPixel) {
   int covered = 0;
   for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
     Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
-    RayState filling = initialRayState();
-    for (;;) {  // produce what the ray asks for until it finishes
-      CachedAccess<BrickPool> access{v, pool, f.lod};
-      if (march(ray, f.lod, filling, access) == MarchResult::Finished) break;
-      for (uint32_t r = 0; r < v.counters[COUNTER_REQUESTS]; ++r)
-        produce(cache, v, cache.requests()[r]);
-      cache.clearRequests();
-    }
+    RayState filling =
+        marchFilling(ray, f, cache, findScene("perlin").world, [](const BrickKey&) {});
     RayState s = initialRayState(), all = initialRayState();
     CachedAccess<BrickPool> access{v, pool, f.lod};
     EveryCellOccupied every{{v, pool, f.lod}};

@@ -263,7 +263,8 @@ TEST(Cli, BudgetedRenderReportsCoarserPixels) {
   std::filesystem::remove_all(dir);
 }
 
-// stats.json reports the configuration as used: dp's defaults resolved, --pool-mb in bricks.
+// stats.json reports the configuration as used: dp's defaults resolved, --pool-mb in bricks; and
+// where the frame's requested bricks went.
 TEST(Cli, StatsReportTheResolvedConfiguration) {
   std::string dir = test::tempDir("cli_resolved");
   test::CommandResult r = test::runGvdp(
@@ -274,6 +275,13 @@ TEST(Cli, StatsReportTheResolvedConfiguration) {
   nlohmann::json j = readStats(dir);
   EXPECT_EQ(j["pool_bricks"], 64 * 1024 * 1024 / (BRICK_SAMPLE_COUNT * 4));
   EXPECT_EQ(j["pending_launches"], DEFAULT_PENDING_LAUNCHES);
+  // Every brick requested ends produced (a slot), EMPTY, CLEAR (all zero, no slot) or failed;
+  // perlin's first frame has CLEAR ones near its ground.
+  const nlohmann::json& f = j["frames"][0];
+  EXPECT_GT(f["bricks_clear"].get<int>(), 0);
+  EXPECT_EQ(f["bricks_requested"].get<int>(),
+            f["bricks_produced"].get<int>() + f["bricks_empty"].get<int>() +
+                f["bricks_clear"].get<int>() + f["bricks_failed"].get<int>());
   std::filesystem::remove_all(dir);
 }
 
