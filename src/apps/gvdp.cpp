@@ -350,9 +350,8 @@ int runRender(const RenderFlags& flags) {
         if (video) video->add(image);
         if (!flags.timeline.empty()) writeTimeline(s, flags.timeline, s.index, o);
         if (!s.rayCosts.empty()) {
-          costs.push_back(summarizeRayCosts(s.rayCosts));
           std::snprintf(name, sizeof name, "/cost_%04d.png", s.index);
-          writePng(rayCostImage(s.rayCosts, costs.back(), frameTitle(o, s.index)), dir + name);
+          costs.push_back(writeRayCostMap(s.rayCosts, frameTitle(o, s.index), dir + name));
         }
         frames.push_back(s);
         frames.back().rayCosts = {};  // the maps are in the pictures
@@ -439,8 +438,7 @@ int runTimeline(const RenderFlags& flags, int frame, bool again, const std::stri
               t.overflow ? " (records overflowed)" : "", png.c_str(), trace.empty() ? "" : ", ",
               trace.c_str());
   if (!costMap.empty()) {
-    RayCostSummary c = summarizeRayCosts(last.rayCosts);
-    writePng(rayCostImage(last.rayCosts, c, title), costMap);
+    RayCostSummary c = writeRayCostMap(last.rayCosts, title, costMap);
     std::printf("%s\nwrote %s\n", rayCostLine(c).c_str(), costMap.c_str());
   }
   return 0;

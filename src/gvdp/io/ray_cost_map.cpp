@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gvdp/io/draw.h"
+#include "gvdp/io/png.h"
 
 namespace gvdp::detail {
 namespace {
@@ -118,6 +119,13 @@ Image rayCostImage(const RayCosts& c, const RayCostSummary& s, const std::string
   drawPanel(im, l, 2 * MARGIN + panel, c, c.samples, s.samples, "samples");
   drawPanel(im, l, 3 * MARGIN + 2 * panel, c, c.stops, s.stops, "stops (productions waited on)");
   return im;
+}
+
+RayCostSummary writeRayCostMap(const RayCosts& c, const std::string& title,
+                               const std::string& path) {
+  RayCostSummary s = summarizeRayCosts(c);
+  writePng(rayCostImage(c, s, title), path);
+  return s;
 }
 
 }  // namespace gvdp::detail

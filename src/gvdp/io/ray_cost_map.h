@@ -30,5 +30,8 @@ std::string rayCostLine(const RayCostSummary& s);     // one line for the consol
 // Lookups, samples and stops per pixel, left to right, each on a log scale from 0 to its frame's
 // largest value (black, purple, red, orange, yellow), with a scale bar and `title` above.
 Image rayCostImage(const RayCosts& c, const RayCostSummary& s, const std::string& title);
+// The summary of `c` (not empty), its picture written to `path` as a PNG.
+RayCostSummary writeRayCostMap(const RayCosts& c, const std::string& title,
+                               const std::string& path);
 
 }  // namespace gvdp::detail
