@@ -4,6 +4,7 @@
 #include <atomic>
 #include <barrier>
 #include <bit>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <random>
@@ -14,6 +15,7 @@
 
 #include "gvdp/cache/brick_cache_cpu.h"
 #include "gvdp/cache/cached_access.h"
+#include "gvdp/cache/clear_boxes.h"
 #include "gvdp/cache/produce.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/world/registry.h"
@@ -197,13 +199,15 @@ TEST(Cache, FreshMarksLastTheFrameThatPublished) {
   ASSERT_GT(resident.size(), 10u) << "perlin's surface bricks around the eye";
   std::vector<uint32_t> before = cache.entries();
 
-  // The next frame, same eye: every mark settled, every slot kept, nothing else changed; the
-  // lookups read the same bricks.
+  // The next frame, same eye: every mark settled, every slot kept, CLEAR bricks still CLEAR (with
+  // their boxes: clear_boxes.h), nothing else changed; the lookups read the same bricks.
   cache.beginFrame(frameAt(eye, 1));
   for (size_t i = 0; i < cache.entries().size(); ++i) {
     uint32_t was = before[i], now = cache.entries()[i];
     if (isSlot(was)) {
       EXPECT_EQ(now, slotOf(was)) << "entry " << i;
+    } else if (was == ENTRY_CLEAR) {
+      EXPECT_TRUE(isClearEntry(now)) << "entry " << i;
     } else {
       EXPECT_EQ(now, was) << "entry " << i;
     }
@@ -277,12 +281,12 @@ TEST(Cache, BrickBordersAreSeamless) {
         uint32_t ea = cache.entries()[m.entryIndex(level, ka.brick)];
         uint32_t eb = cache.entries()[m.entryIndex(level, kb.brick)];
         // A CLEAR brick samples zero (brick_key.h): its resident neighbour must too, on the face.
-        if (!(isSlot(ea) || ea == ENTRY_CLEAR) || !(isSlot(eb) || eb == ENTRY_CLEAR)) continue;
-        if (ea == ENTRY_CLEAR && eb == ENTRY_CLEAR) continue;
+        if (!(isSlot(ea) || isClearEntry(ea)) || !(isSlot(eb) || isClearEntry(eb))) continue;
+        if (isClearEntry(ea) && isClearEntry(eb)) continue;
         (isSlot(ea) && isSlot(eb) ? bothResident : besideClear) += 20;
         BrickPool pool = cache.pool();
         auto sampleOf = [&](uint32_t e, Vec3i brick, Vec3f p) {
-          return e == ENTRY_CLEAR
+          return isClearEntry(e)
                      ? Vec4f{0, 0, 0, 0}
                      : pool.sample(slotOf(e), {8 * brick.x, 8 * brick.y, 8 * brick.z}, p);
         };
@@ -327,13 +331,20 @@ TEST(Cache, EmptyEntriesAreDistinctAndDecode) {
   for (uint32_t e : {ENTRY_MISSING, ENTRY_IN_PRODUCTION, ENTRY_EMPTY - 1u, 0u, MAX_SLOTS - 1u,
                      ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS - 1u, ENTRY_EMPTY + 0x1000000u})
     EXPECT_FALSE(isEmptyEntry(e)) << e;
+  EXPECT_EQ(clearEntry(EmptyReachCodes{}), ENTRY_CLEAR);
+  for (uint32_t e : {ENTRY_MISSING, ENTRY_IN_PRODUCTION, ENTRY_EMPTY,
+                     ENTRY_EMPTY | EMPTY_CODES_MASK, 0u, MAX_SLOTS - 1u,
+                     ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS - 1u, ENTRY_CLEAR + 0x1000000u})
+    EXPECT_FALSE(isClearEntry(e)) << e;
+  EXPECT_TRUE(isClearEntry(ENTRY_CLEAR | EMPTY_CODES_MASK));
 }
 
 // The bricks of the box EMPTY entry `entry` of brick `key` names that do not evaluate empty: of
 // its two opposite corners and `inside` bricks drawn in it, every `stride`-th sample must be empty
-// and transparent. "" when all are; else the first failing sample.
+// and transparent (`zeroOnly`, a CLEAR entry's box: transparent). "" when all are; else the
+// first failing sample.
 std::string nonEmptyInBox(const BuiltinScene& world, const BrickKey& key, uint32_t entry,
-                          std::mt19937& rng, int inside, int stride) {
+                          std::mt19937& rng, int inside, int stride, bool zeroOnly = false) {
   EmptyReach r = emptyReach(entry);
   auto in = [&](int below, int above) {
     return -below + static_cast<int>(rng() % (below + above + 1));
@@ -346,7 +357,7 @@ std::string nonEmptyInBox(const BuiltinScene& world, const BrickKey& key, uint32
     BrickKey brick{key.brick + d, key.level};
     for (int s = 0; s < BRICK_SAMPLE_COUNT; s += stride) {
       VoxelSample v = produceBrickSample(world, brick, s);
-      if (!v.empty || v.rgba != 0u)
+      if ((!zeroOnly && !v.empty) || v.rgba != 0u)
         return "level " + std::to_string(key.level) + " offset (" + std::to_string(d.x) + ", " +
                std::to_string(d.y) + ", " + std::to_string(d.z) + ") sample " + std::to_string(s);
     }
@@ -661,6 +672,18 @@ struct NoRuns : CachedAccess<BrickPool> {
   }
 };
 
+// CachedAccess as before CLEAR boxes: a CLEAR brick of the ray's level is a resident one whose
+// cells are all clear, left alone (brick_key.h: ENTRY_CLEAR).
+struct ClearBricksAlone : CachedAccess<BrickPool> {
+  BrickLookup lookup(int level, Vec3i brick) {
+    BrickLookup b = CachedAccess<BrickPool>::lookup(level, brick);
+    if (b.state == BrickState::Empty && b.level == level &&
+        isClearEntry(peek(entryOf(level, brick))))
+      return clear(level, brick);
+    return b;
+  }
+};
+
 // CachedAccess as it is (expectSameMarches' makeA, makeB).
 CachedAccess<BrickPool> plainAccess(const CacheView& v, const BrickPool& pool, const Lod& lod) {
   return {v, pool, lod};
@@ -725,7 +748,7 @@ TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
         flagged = flagged && x.empty;
       }
       ASSERT_FALSE(flagged) << "an empty brick not published EMPTY";
-      if (e == ENTRY_CLEAR) {
+      if (isClearEntry(e)) {
         ASSERT_TRUE(zero) << "a CLEAR brick with a nonzero sample, level " << key.level;
         ++clear;
       } else {
@@ -746,6 +769,66 @@ TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
   EXPECT_EQ(v.counters[COUNTER_PRODUCED], static_cast<uint32_t>(resident));
   // Only the resident bricks took a slot.
   EXPECT_EQ(v.counters[COUNTER_FREE_NEXT], static_cast<uint32_t>(resident));
+}
+
+// The CLEAR bricks of a frame grow boxes at the next frame's start from the bricks the table
+// knows zero (clear_boxes.h). Every box names bricks zero at its level: each brick of it, evaluated
+// sample by sample (its corners and two inside), is all zero. A ray leaves a box with one lookup:
+// every ray marches the same colour, bit for bit, as it did while the cache filled and as it does
+// when it leaves each CLEAR brick alone, in fewer lookups.
+TEST(Cache, ClearBoxesNameZeroBricksAndCutLookupsNotColours) {
+  std::mt19937 rng(6);
+  for (const char* scene : {"perlin", "fbm"}) {
+    const SceneInfo& info = findScene(scene);
+    BrickCacheCpu cache(60000);
+    FrameSetup f = makeFrame(info.start, info.world.voxelSize0(), 96, 60, 6, 0);
+    cache.beginFrame(f);
+    CacheView v = cache.view();
+    BrickPool pool = cache.pool();
+    std::vector<Vec4f> filled;
+    for (int pixel = 0; pixel < f.width * f.height; ++pixel)
+      filled.push_back(marchFilling(f.primaryRay(pixel % f.width, pixel / f.width), f, cache,
+                                    info.world, [](const BrickKey&) {})
+                           .colour);
+    uint32_t listed = v.counters[COUNTER_CLEAR];
+    cache.beginFrame(f);  // the same frame again: the boxes grow
+    v = cache.view();
+    int boxes = 0, bigger = 0;
+    const Clipmap& m = cache.clipmap();
+    for (int level = 0; level < m.levels; ++level)
+      for (int z = 0; z < m.width; ++z)
+        for (int y = 0; y < m.width; ++y)
+          for (int x = 0; x < m.width; ++x) {
+            Vec3i g = m.windowOrigin[level] + Vec3i{x, y, z};
+            uint32_t e = cache.entries()[m.entryIndex(level, g)];
+            if (!isClearEntry(e) || e == ENTRY_CLEAR) continue;
+            EmptyReach r = emptyReach(e);
+            bigger += r.below.x + r.above.x + r.below.y + r.above.y + r.below.z + r.above.z > 6;
+            if (++boxes % 16 == 1) {
+              ASSERT_EQ(nonEmptyInBox(info.world, {g, level}, e, rng, 2, 1, true), "") << scene;
+            }
+          }
+    long lookups[2] = {0, 0};
+    for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
+      Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
+      RayState sa = initialRayState(), sb = initialRayState();
+      CachedAccess<BrickPool> a{v, pool, f.lod};
+      ClearBricksAlone b{{v, pool, f.lod}};
+      ASSERT_EQ(march(ray, f.lod, sa, a), MarchResult::Finished) << scene << " " << pixel;
+      ASSERT_EQ(march(ray, f.lod, sb, b), MarchResult::Finished) << scene << " " << pixel;
+      ASSERT_EQ(std::memcmp(&sa.colour, &filled[pixel], sizeof(Vec4f)), 0) << scene << pixel;
+      ASSERT_EQ(std::memcmp(&sb.colour, &filled[pixel], sizeof(Vec4f)), 0) << scene << pixel;
+      lookups[0] += a.lookups;
+      lookups[1] += b.lookups;
+    }
+    std::printf(
+        "[ measure ] %s: %u CLEAR bricks listed, %d boxes (%d beyond one brick a face); "
+        "lookups %ld, %ld with each CLEAR brick alone\n",
+        scene, listed, boxes, bigger, lookups[0], lookups[1]);
+    EXPECT_GT(boxes, 100) << scene;
+    EXPECT_GT(bigger, 0) << scene;
+    EXPECT_LT(lookups[0], lookups[1]) << scene;
+  }
 }
 
 // A resident brick's run (its samples with no brick test each) samples what the brick-by-brick

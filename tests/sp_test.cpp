@@ -54,8 +54,11 @@ TEST_P(SpTest, TinyPoolDegradesButFinishesEveryPixel) {
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, SpTest, ::testing::Range(0, SCENE_COUNT));
 
-// A still camera: the second render of the same frame produces nothing and gives the same image.
-TEST(Sp, StillCameraProducesNothingAfterTheFirstFrame) {
+// A still camera: the same frame rendered again gives the same image and soon produces nothing.
+// The second render may produce a few bricks: the CLEAR boxes grown after the first (cache/
+// clear_boxes.h) lead some rays to land in bricks they skipped before inside another brick's EMPTY
+// box, never produced (random-spheres at 64x40: 10, then none).
+TEST(Sp, StillCameraProducesNothingAfterTheFirstFrames) {
   SequenceOptions o;
   o.scene = "random-spheres";
   o.width = 64;
@@ -63,13 +66,18 @@ TEST(Sp, StillCameraProducesNothingAfterTheFirstFrame) {
   o.scheduler = {Backend::Cpu, SchedulerKind::Sp};
   std::unique_ptr<Scheduler> s = test::schedulerFor(o);
   FrameSetup frame = frameOf(o, 0);
-  Image first, second;
-  FrameStats a = s->render(frame, first), b = s->render(frame, second);
+  Image first, again;
+  FrameStats a = s->render(frame, first);
   EXPECT_GT(a.cache.produced, 0u);
-  EXPECT_EQ(b.cache.produced, 0u);
-  EXPECT_EQ(b.cache.requested, 0u);
-  EXPECT_EQ(first.pixels, second.pixels);
-  EXPECT_EQ(b.unfinishedPixels, 0);
+  uint32_t requested = 0;
+  for (int k = 1; k <= 3; ++k) {
+    FrameStats b = s->render(frame, again);
+    EXPECT_EQ(first.pixels, again.pixels) << "render " << k;
+    EXPECT_EQ(b.unfinishedPixels, 0);
+    EXPECT_LT(b.cache.requested, a.cache.requested / 10) << "render " << k;
+    requested = b.cache.requested;
+  }
+  EXPECT_EQ(requested, 0u) << "a still camera still producing at its fourth render";
 }
 
 // A moving camera reuses most of the cache: later frames produce fewer bricks than the first.

@@ -19,6 +19,8 @@
 //                                               for every counter, in one pass (cache_ops.h)
 //   unmapSlots(view, n, timeline)               unmapFreeSlot(view, i) for i < n (cache_ops.h)
 //   settleFresh(view, n, timeline)              settleFreshSlot(view, i) for i < n (cache_ops.h)
+//   growClearBoxes(view, n, timeline)           growClearBox(group, view, i) for the listed
+//                                               items i < n (clear_boxes.h: clearItems)
 //   lruBytes(), LRU_NAME                        what the LRU order holds, for the memory report
 #pragma once
 
@@ -49,6 +51,7 @@ class BrickCache {
     GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < SLOT_LIMIT, "bad --pool-bricks ", poolBricks);
     texels_ = Buffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
     occupancy_ = Buffer<uint64_t>(poolBricks);
+    clearKeys_ = Buffer<BrickKey>(CLEAR_LIST_CAPACITY);
   }
   BrickCache(const BrickCache&) = delete;
   BrickCache& operator=(const BrickCache&) = delete;
@@ -64,6 +67,8 @@ class BrickCache {
   // the request queue, refill the free slot list.
   void beginFrame(const FrameSetup& frame) {
     timeline_ = frame.timeline;  // the last frame's may be gone
+    // The last frame's CLEAR bricks grow their boxes, in its clipmap, before its counters go.
+    if (frame_ > 0 && entries_.size()) ops_.growClearBoxes(view(), CLEAR_LIST_CAPACITY, timeline_);
     // The last frame's fresh marks settled, the counters zeroed and the deadline set: one pass.
     ops_.startFrame(view(), freeSlots_ ? poolBricks_ : 0u, budgeted() ? budgetNs_ : int64_t{-1},
                     timeline_);
@@ -120,6 +125,8 @@ class BrickCache {
     v.freeSlots = freeSlots_;
     v.requests = requests_.data();
     v.requestCapacity = static_cast<uint32_t>(requests_.size());
+    v.clearKeys = clearKeys_.data();
+    v.clearCapacity = static_cast<uint32_t>(clearKeys_.size());
     v.counters = counters_.data();
     v.frame = frame_;
     v.degraded = degraded_ ? 1u : 0u;
@@ -170,7 +177,7 @@ class BrickCache {
         {"brick_pool", bytesOf(texels_)},         {"brick_occupancy", bytesOf(occupancy_)},
         {"indirection_table", bytesOf(entries_)}, {"inverse_table", bytesOf(inverse_)},
         {"timestamps", bytesOf(timestamps_)},     {Ops::LRU_NAME, ops_.lruBytes()},
-        {"request_queue", bytesOf(requests_)}};
+        {"request_queue", bytesOf(requests_)},    {"clear_list", bytesOf(clearKeys_)}};
     if (rayCosts_.size()) m.push_back({"ray_costs", bytesOf(rayCosts_)});  // render --cost-map
     return m;
   }
@@ -203,7 +210,7 @@ class BrickCache {
   ClipmapTracker tracker_;
   Clipmap clipmap_{};
   Buffer<uint32_t> entries_, timestamps_, counters_, rayCosts_;
-  Buffer<BrickKey> inverse_, requests_;
+  Buffer<BrickKey> inverse_, requests_, clearKeys_;
   Buffer<Rgba8> texels_;
   Buffer<uint64_t> occupancy_;
   Ops ops_;

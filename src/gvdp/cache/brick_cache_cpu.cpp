@@ -7,6 +7,7 @@
 #include "gvdp/base/clock.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/cache_ops.h"
+#include "gvdp/cache/clear_boxes.h"
 #include "gvdp/cache/lru_order.h"
 #include "gvdp/profile/timeline.h"
 
@@ -63,6 +64,13 @@ void HostCacheOps::countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t fra
 
 void HostCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineView&) {
   for (uint32_t i = 0; i < n; ++i) settleFreshSlot(v, i);
+}
+
+void HostCacheOps::growClearBoxes(const CacheView& v, uint32_t n, const TimelineView&) {
+  uint32_t items = std::min(clearItems(v), n);
+  parallelFor(
+      items, [&](int64_t i) { growClearBox(ThreadScope{}, v, static_cast<uint32_t>(i)); }, 16,
+      static_cast<uint8_t>(TaskKind::Cache));
 }
 
 void HostCacheOps::startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,

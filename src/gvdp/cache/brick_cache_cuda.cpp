@@ -53,6 +53,10 @@ void CudaCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineVie
   launchSettleFresh(v, n, t, stream_);
 }
 
+void CudaCacheOps::growClearBoxes(const CacheView& v, uint32_t n, const TimelineView& t) const {
+  launchGrowClearBoxes(v, n, t, stream_);
+}
+
 void CudaCacheOps::startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
                               const TimelineView& t) const {
   launchStartFrame(v, settle, deadlineNs, t, stream_);

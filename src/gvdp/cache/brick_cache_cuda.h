@@ -30,6 +30,7 @@ class CudaCacheOps {
   void unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters) const;
   void settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const;
+  void growClearBoxes(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
                   const TimelineView& t) const;
   size_t lruBytes() const;

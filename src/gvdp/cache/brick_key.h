@@ -1,8 +1,9 @@
 // Indirection-table entries and brick keys (paper 3.2). An entry is a uint32: a brick-pool slot,
 // or a state above every slot: MISSING, EMPTY (with the empty box of bricks around it:
-// emptyEntry), CLEAR, IN_PRODUCTION, or (pt) in production by the production task
-// PRODUCTION_TASK + id, whose rays wait on that task's list. A BrickKey names a
-// brick by level and global brick coordinates (the inverse table stores one per slot).
+// emptyEntry), CLEAR (with the box of bricks zero at its level: clearEntry), IN_PRODUCTION, or (pt)
+// in production by the production task PRODUCTION_TASK + id, whose rays wait on that task's list. A
+// BrickKey names a brick by level and global brick coordinates (the inverse table stores one per
+// slot).
 #pragma once
 
 #include <cstdint>
@@ -14,13 +15,6 @@ namespace gvdp::detail {
 
 constexpr uint32_t ENTRY_MISSING = 0xffffffffu;
 constexpr uint32_t ENTRY_IN_PRODUCTION = 0xfffffffeu;
-// A CLEAR brick was produced and every one of its samples (the border's too) is zero, but the
-// producer did not flag it empty: a finer level may hold something there (the empty flag's
-// margin, world/producer.h). It samples zero at its own level, as a resident brick whose cells
-// are all clear would, and holds no slot (cache/produce.h: commitBrick). Perlin's and fbm's
-// walkthroughs leave two thirds of their resident bricks all zero, forest's and the spheres' a
-// quarter (frame 12, CPU, 300x200 at --lod-width 1500).
-constexpr uint32_t ENTRY_CLEAR = 0xfffffffdu;
 constexpr uint32_t MAX_SLOTS = 0x80000000u;  // slot entries are below every special value
 // A slot entry published in the running frame carries ENTRY_FRESH: a reader that may run while
 // bricks are published (PoolReads::Coherent, cached_access.h) acquires such an entry before it
@@ -40,7 +34,20 @@ constexpr uint32_t ENTRY_EMPTY = 0xf0000000u;
 constexpr uint32_t EMPTY_CODES_MASK = 0xffffffu;
 static_assert(ENTRY_EMPTY >= ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS,
               "EMPTY entries overlap the production-task names");
-static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_CLEAR, "EMPTY entries overlap the states");
+
+// A CLEAR brick was produced and every one of its samples (the border's too) is zero, but the
+// producer did not flag it empty: a finer level may hold something there (the empty flag's
+// margin, world/producer.h). It samples zero at its own level, as a resident brick whose cells
+// are all clear would, and holds no slot (cache/produce.h: commitBrick). Perlin's and fbm's
+// walkthroughs leave two thirds of their resident bricks all zero, forest's and the spheres' a
+// quarter (frame 12, CPU, 300x200 at --lod-width 1500). Like an EMPTY entry it names a box, in
+// its low 24 bits, ENTRY_CLEAR alone the brick alone: the bricks of that box are zero at its
+// level, by the producer's zero bound (world/producer.h: zeroBox; cache/produce.h: growClearBox),
+// so a ray of that level leaves the box with one lookup; a finer level may hold matter in it.
+constexpr uint32_t ENTRY_CLEAR = 0xf1000000u;
+static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_CLEAR, "CLEAR entries overlap EMPTY ones");
+static_assert((ENTRY_CLEAR | EMPTY_CODES_MASK) < ENTRY_IN_PRODUCTION,
+              "CLEAR entries overlap the states");
 
 GVDP_HD GVDP_INLINE uint32_t emptyEntry(const EmptyReachCodes& c) {
   return ENTRY_EMPTY | c.packed();
@@ -50,7 +57,15 @@ GVDP_HD GVDP_INLINE bool isEmptyEntry(uint32_t entry) {
   return (entry & ~EMPTY_CODES_MASK) == ENTRY_EMPTY;
 }
 
-// The empty box an EMPTY entry names, in bricks from its own: [brick - below, brick + above].
+GVDP_HD GVDP_INLINE uint32_t clearEntry(const EmptyReachCodes& c) {
+  return ENTRY_CLEAR | c.packed();
+}
+
+GVDP_HD GVDP_INLINE bool isClearEntry(uint32_t entry) {
+  return (entry & ~EMPTY_CODES_MASK) == ENTRY_CLEAR;
+}
+
+// The box an EMPTY (or CLEAR) entry names, in bricks from its own: [brick - below, brick + above].
 struct EmptyReach {
   Vec3i below, above;
 };

@@ -4,8 +4,10 @@
 #include <cub/block/block_scan.cuh>
 
 #include "gvdp/base/clock.h"
+#include "gvdp/base/cooperation.h"
 #include "gvdp/base/dependent_launch.cuh"
 #include "gvdp/cache/cache_kernels.h"
+#include "gvdp/cache/clear_boxes.h"
 #include "gvdp/cache/lru_order.h"
 #include "gvdp/profile/parallel_for.cuh"
 
@@ -163,6 +165,17 @@ void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& t
                        cudaStream_t stream) {
   parallelForCuda("cache: settle fresh entries", stream, n, timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) { settleFreshSlot(cache, i); });
+}
+
+void launchGrowClearBoxes(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+                          cudaStream_t stream) {
+  parallelForCuda("cache: grow clear boxes", stream, n * 32u, timeline, TaskKind::Cache,
+                  [=] __device__(uint32_t i) {
+                    // Whole warps: n * 32 threads, and the count the same for a warp's lanes.
+                    uint32_t item = i / 32u;
+                    if (item < clearItems(cache))
+                      growClearBox(WarpScope{static_cast<int>(i % 32u)}, cache, item);
+                  });
 }
 
 void launchStartFrame(const CacheView& cache, uint32_t settle, int64_t deadlineNs,

@@ -127,9 +127,9 @@ GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
 }
 
 // Algorithm 2, the end: publish what production found, an empty brick (its EMPTY entry,
-// brick_key.h: emptyEntry), a clear one (ENTRY_CLEAR), a slot, or MAX_SLOTS when no slot was left.
-// The samples of a resident brick must be written (and fenced, by the caller on the GPU) before
-// this.
+// brick_key.h: emptyEntry), a clear one (ENTRY_CLEAR, listed: clear_boxes.h), a slot, or MAX_SLOTS
+// when no slot was left. The samples of a resident brick must be written (and fenced, by the caller
+// on the GPU) before this.
 GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, uint32_t found) {
   uint32_t index = c.clipmap.entryIndex(key.level, key.brick);
   if (isEmptyEntry(found)) {
@@ -137,7 +137,8 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, u
     atomicAdd32(&c.counters[COUNTER_EMPTY], 1u);
   } else if (found == ENTRY_CLEAR) {
     storeRelease32(&c.entries[index], found);
-    atomicAdd32(&c.counters[COUNTER_CLEAR], 1u);
+    uint32_t i = atomicAdd32(&c.counters[COUNTER_CLEAR], 1u);
+    if (i < c.clearCapacity) c.clearKeys[i] = key;  // its box grown at the next frame's start
   } else if (found == MAX_SLOTS) {
     storeRelease32(&c.entries[index], ENTRY_MISSING);  // retried after a refill, or degraded
     atomicAdd32(&c.counters[COUNTER_FAILED], 1u);

@@ -88,6 +88,10 @@ GVDP_HD GVDP_INLINE void countSlotMark(uint32_t* counters, SlotMark m) {
 // a brick not ready: the productions the ray waited on, one after the other).
 enum RayCostWord : int { RAY_COST_LOOKUPS, RAY_COST_SAMPLES, RAY_COST_STOPS, RAY_COST_WORDS };
 
+// CLEAR bricks listed per frame for their boxes (clear_boxes.h); those beyond stay alone (a frame
+// from a cold cache publishes more).
+constexpr uint32_t CLEAR_LIST_CAPACITY = 1u << 16;
+
 struct CacheView {
   Clipmap clipmap;
   uint32_t* entries;          // clipmap.entryCount()
@@ -96,6 +100,8 @@ struct CacheView {
   const uint32_t* freeSlots;  // freeCount() valid entries
   BrickKey* requests;         // production queue
   uint32_t requestCapacity;
+  BrickKey* clearKeys;  // the frame's CLEAR bricks, in publication order (clear_boxes.h)
+  uint32_t clearCapacity;
   uint32_t* counters;         // CacheCounter
   uint32_t frame;             // current frame stamp (>= 1)
   uint32_t degraded;          // nonzero: no production; rays fall back to coarser levels

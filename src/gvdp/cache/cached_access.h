@@ -150,13 +150,14 @@ struct CachedAccess {
 
   // A brick that can be sampled, resident or CLEAR: as resident() or clear().
   GVDP_HD static bool shown(uint32_t e) {
-    return isSlot(e) || e == ENTRY_CLEAR;
+    return isSlot(e) || isClearEntry(e);
   }
   GVDP_HD BrickLookup shownBrick(const uint32_t* entry, uint32_t e, int level, Vec3i brick) const {
     return isSlot(e) ? resident(entry, e, level, brick) : clear(level, brick);
   }
 
-  // An EMPTY brick, with the box its entry names.
+  // An EMPTY brick, with the box its entry names; for a ray of its level a CLEAR one too, whose
+  // box is zero at that level (the march leaves an own-level box only within its level).
   GVDP_HD static BrickLookup empty(int level, Vec3i brick, uint32_t entry) {
     return {BrickState::Empty, 0u, level, brick, ~uint64_t{0}, entry & EMPTY_CODES_MASK};
   }
@@ -198,8 +199,8 @@ struct CachedAccess {
     if (index == Clipmap::NOT_IN_WINDOW) return {BrickState::Empty, 0u, level, brick};
     uint32_t* entry = &cache.entries[index];
     uint32_t e = loadRelaxed32(entry);
-    if (shown(e)) return shownBrick(entry, e, level, brick);
-    if (isEmptyEntry(e)) return empty(level, brick, e);
+    if (isSlot(e)) return resident(entry, e, level, brick);
+    if (isEmptyEntry(e) || isClearEntry(e)) return empty(level, brick, e);
     // Missing or in production: an EMPTY ancestor lets the ray skip it, with no production. The
     // frame's degraded state is read only where it decides (a resident ancestor, or none EMPTY):
     // most such lookups end at an EMPTY ancestor, and a load of the counter per lookup stalled

@@ -117,12 +117,13 @@ GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const Scope& group, const P& producer
 }
 
 // The reach codes with `faces` (a bit per face) one step further: 0 to 1, then two codes
-// (about twice the reach), up to the last.
-GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces) {
+// (about twice the reach), up to `last`.
+GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces,
+                                               int last = MAX_EMPTY_REACH_CODE) {
   for (int f = 0; f < 6; ++f) {
     if (!(faces >> f & 1u)) continue;
     int next = c.face[f] == 0 ? 1 : c.face[f] + 2;
-    c.face[f] = next < MAX_EMPTY_REACH_CODE ? next : MAX_EMPTY_REACH_CODE;
+    c.face[f] = next < last ? next : last;
   }
   return c;
 }
@@ -213,25 +214,41 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // One loop and one call of the producer's bound, which the compiler inlines with the whole
 // world's bound: a test is the slab of one face (Alone), of a face of the faces grown together
 // (Together, and ahead: once or twice), or a parent's brick (Parent, and ahead).
+//
+// The same growth makes a CLEAR brick's box from the entries already known zero (KnownZeroBound,
+// growClearBox): a box of bricks of one level, which says nothing of the parent.
 constexpr int GROW_TESTS = 6, GROW_AHEAD_TESTS = 3 * 6 + 1, GROW_AHEAD_MEMBERS = GROW_AHEAD_TESTS;
 
-template <class Scope, class P, class Publish>
-GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, BrickKey key,
-                                        const Clipmap& clipmap, Publish&& publish) {
+// The producer's emptiness bound as growBoxes tests it (boxBoundedEmpty): EMPTY boxes, which
+// climb to the parent, grown ahead by a group wide enough.
+template <class P>
+struct ProducerBound {
+  const P& producer;
+  static constexpr bool ZERO_AT_LEVEL = false;  // true: a CLEAR box (clear_boxes.h)
+  static constexpr int MAX_CODE = MAX_EMPTY_REACH_CODE;
+  GVDP_HD int partsFor(int members, int tests) const { return boxPartsFor(members, tests); }
+  GVDP_HD bool clear(const BrickKey& k, Vec3i lo, Vec3i hi, int part, int parts) const {
+    return boxBoundedEmpty(producer, k, lo, hi, part, parts);
+  }
+};
+
+template <class Scope, class Bound, class Publish>
+GVDP_HD GVDP_INLINE void growBoxes(const Scope& group, const Bound& bound, BrickKey key,
+                                   const Clipmap& clipmap, Publish&& publish) {
   enum class Step : uint8_t { Alone, Together, Parent };
   constexpr int PARENT_TEST = GROW_AHEAD_TESTS - 1;  // test bits: kind * 6 + face, then this
-  const bool ahead = group.size() >= GROW_AHEAD_MEMBERS;
+  const bool ahead = !Bound::ZERO_AT_LEVEL && group.size() >= GROW_AHEAD_MEMBERS;
   const int tests = ahead ? GROW_AHEAD_TESTS : GROW_TESTS;
-  const int parts = boxPartsFor(group.size(), tests);
+  const int parts = bound.partsFor(group.size(), tests);
   Step step = Step::Alone;
   EmptyReachCodes codes{}, all{}, twice{};
   ExitFaces exits = exitFacesFrom(clipmap, key);
   uint32_t growing = exits.faces, cleared = 0u, again = 0u;  // one bit per face
-  int parent = -1;                                           // its test's answer (-1: none yet)
+  int parent = Bound::ZERO_AT_LEVEL ? 0 : -1;                // its test's answer (-1: none yet)
   auto growable = [&](uint32_t faces, const EmptyReachCodes& c) {
     uint32_t g = 0u;
     for (int f = 0; f < 6; ++f)
-      if ((faces >> f & 1u) && c.face[f] < MAX_EMPTY_REACH_CODE) g |= 1u << f;
+      if ((faces >> f & 1u) && c.face[f] < Bound::MAX_CODE) g |= 1u << f;
     return g;
   };
   auto level = [&] {  // the next brick's growth, from itself
@@ -243,7 +260,8 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
   };
   for (;;) {
     if (step != Step::Parent && growing == 0u) {  // grown
-      if (!publish(key, emptyEntry(codes)) || parent == 0) return;
+      uint32_t entry = Bound::ZERO_AT_LEVEL ? clearEntry(codes) : emptyEntry(codes);
+      if (!publish(key, entry) || parent == 0) return;
       key = {halfFloor(key.brick), key.level + 1};
       if (parent < 0) {
         step = Step::Parent;
@@ -255,9 +273,9 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
     uint32_t tested = step == Step::Alone ? growing : step == Step::Together ? cleared : 1u;
     const bool several = (growing & (growing - 1u)) != 0u;
     if (ahead && step == Step::Alone) {
-      all = grownCodes(codes, growing);
+      all = grownCodes(codes, growing, Bound::MAX_CODE);
       again = growable(growing, all);
-      twice = grownCodes(all, again);
+      twice = grownCodes(all, again, Bound::MAX_CODE);
       tested |= (several ? growing : 0u) << 6 | again << 12;
       if (parent < 0) tested |= 1u << PARENT_TEST;
     }
@@ -270,14 +288,15 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
       if (test == PARENT_TEST) {
         k = {halfFloor(key.brick), key.level + 1};
       } else if (step != Step::Parent) {
-        EmptyReachCodes outer = kind == 2                             ? twice
-                                : kind == 1 || step == Step::Together ? all
-                                                                      : grownCodes(codes, 1u << f);
+        EmptyReachCodes outer = kind == 2 ? twice
+                                : kind == 1 || step == Step::Together
+                                    ? all
+                                    : grownCodes(codes, 1u << f, Bound::MAX_CODE);
         EmptyReachCodes inner = outer;
         inner.face[f] = kind == 2 ? all.face[f] : codes.face[f];
         slabOf(inner, outer, f, lo, hi);
       }
-      if (!boxBoundedEmpty(producer, k, lo, hi, t % parts, parts)) failed |= 1u << test;
+      if (!bound.clear(k, lo, hi, t % parts, parts)) failed |= 1u << test;
     }
     const uint32_t passed = tested & ~group.any(failed);
     if (step == Step::Parent) {
@@ -306,7 +325,7 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
         if (ahead && cleared == growing) {     // all of them were tested together above
           take = exits.firstLeft(codes, cleared);
         } else {
-          all = grownCodes(codes, cleared);
+          all = grownCodes(codes, cleared, Bound::MAX_CODE);
           step = Step::Together;
           continue;
         }
@@ -314,9 +333,15 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
         take = cleared;
       }
     }
-    codes = grownCodes(codes, take);
+    codes = grownCodes(codes, take, Bound::MAX_CODE);
     growing = growable(cleared, codes);
   }
+}
+
+template <class Scope, class P, class Publish>
+GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, BrickKey key,
+                                        const Clipmap& clipmap, Publish&& publish) {
+  growBoxes(group, ProducerBound<P>{producer}, key, clipmap, publish);
 }
 
 // An empty brick is published EMPTY with the box the group grows for it, then its ancestors are

@@ -160,11 +160,12 @@ struct Marcher {
       return Seek::Finished;
     }
     if (b.state == BrickState::Empty) {
-      // Every sample of the box at a level up to the box's own is zero; coarser samples in it
-      // may not be: the skip ends at the box or at the end of its level, whichever comes first.
-      // A sample is thus skipped exactly when it is zero-valued by an EMPTY box of its level or
-      // a coarser one, whichever boxes the lookups happened to return: the image does not depend
-      // on how far each skip goes.
+      // Every sample of the box at a level up to the box's own is zero (a CLEAR box, which
+      // comes only at the ray's level: at that level); coarser samples in it may not be: the
+      // skip ends at the box or at the end of its level, whichever comes first. A sample is thus
+      // skipped exactly when it is zero-valued by an EMPTY box of its level or a coarser one or a
+      // CLEAR box of its level, whichever boxes the lookups happened to return: the image does
+      // not depend on how far each skip goes.
       bool own = b.level == s.level;
       float side = (own ? span.voxelSize : lod.voxelSize(b.level)) * BRICK_WIDTH;
       float levelEnd = own ? span.end : lod.levelEnd(b.level);

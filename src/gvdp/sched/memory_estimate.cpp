@@ -3,6 +3,7 @@
 #include "gvdp/base/gpu.h"
 #include "gvdp/base/host_memory.h"
 #include "gvdp/base/parallel.h"
+#include "gvdp/cache/cache_view.h"
 #include "gvdp/cache/clipmap.h"
 #include "gvdp/cache/lru_order.h"
 #include "gvdp/render/march.h"
@@ -30,6 +31,7 @@ MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
   if (o.backend == Backend::Cuda) lru += lruTileCount(static_cast<uint32_t>(k)) * sizeof(uint64_t);
   m.push_back({"lru_order", lru});
   m.push_back({"request_queue", pixels * sizeof(BrickKey)});
+  m.push_back({"clear_list", CLEAR_LIST_CAPACITY * sizeof(BrickKey)});
   return m;
 }
 
