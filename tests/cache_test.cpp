@@ -698,14 +698,26 @@ struct MarchOf {
   }
 };
 
+// A CPU cache that has begun frame 0 at a scene's start, 96x60 with 6 levels: where the marches
+// below are compared.
+struct StartFrame {
+  const SceneInfo& info;
+  BrickCacheCpu cache;
+  FrameSetup f;
+  StartFrame(const char* scene, uint32_t poolBricks)
+      : info(findScene(scene)),
+        cache(poolBricks),
+        f(makeFrame(info.start, info.world.voxelSize0(), 96, 60, 6, 0)) {
+    cache.beginFrame(f);
+  }
+};
+
 // ... and `marchB` marches b's (march() unless given); `sameCounts`: the samples and lookups too.
 template <class A, class B, class MarchB = MarchOf>
 void expectSameMarches(const char* scene, A makeA, B makeB, MarchB marchB = {},
                        bool sameCounts = false) {
-  const SceneInfo& info = findScene(scene);
-  BrickCacheCpu cache(30000);
-  FrameSetup f = makeFrame(info.start, info.world.voxelSize0(), 96, 60, 6, 0);
-  cache.beginFrame(f);
+  StartFrame start(scene, 30000);
+  auto& [info, cache, f] = start;
   CacheView v = cache.view();
   BrickPool pool = cache.pool();
   for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
@@ -779,10 +791,8 @@ TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
 TEST(Cache, ClearBoxesNameZeroBricksAndCutLookupsNotColours) {
   std::mt19937 rng(6);
   for (const char* scene : {"perlin", "fbm"}) {
-    const SceneInfo& info = findScene(scene);
-    BrickCacheCpu cache(60000);
-    FrameSetup f = makeFrame(info.start, info.world.voxelSize0(), 96, 60, 6, 0);
-    cache.beginFrame(f);
+    StartFrame start(scene, 60000);
+    auto& [info, cache, f] = start;
     CacheView v = cache.view();
     BrickPool pool = cache.pool();
     std::vector<Vec4f> filled;

@@ -42,8 +42,9 @@ static_assert(ENTRY_EMPTY >= ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS,
 // walkthroughs leave two thirds of their resident bricks all zero, forest's and the spheres' a
 // quarter (frame 12, CPU, 300x200 at --lod-width 1500). Like an EMPTY entry it names a box, in
 // its low 24 bits, ENTRY_CLEAR alone the brick alone: the bricks of that box are zero at its
-// level, by the producer's zero bound (world/producer.h: zeroBox; cache/produce.h: growClearBox),
-// so a ray of that level leaves the box with one lookup; a finer level may hold matter in it.
+// level, as the table knew them when the box grew, at the next frame's start (cache/
+// clear_boxes.h: growClearBox), so a ray of that level leaves the box with one lookup; a finer
+// level may hold matter in it.
 constexpr uint32_t ENTRY_CLEAR = 0xf1000000u;
 static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_CLEAR, "CLEAR entries overlap EMPTY ones");
 static_assert((ENTRY_CLEAR | EMPTY_CODES_MASK) < ENTRY_IN_PRODUCTION,
