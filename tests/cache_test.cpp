@@ -15,8 +15,8 @@
 
 #include "gvdp/cache/brick_cache_cpu.h"
 #include "gvdp/cache/cached_access.h"
-#include "gvdp/cache/clear_boxes.h"
 #include "gvdp/cache/produce.h"
+#include "gvdp/cache/table_boxes.h"
 #include "gvdp/render/brick_pool.h"
 #include "gvdp/world/registry.h"
 
@@ -199,8 +199,9 @@ TEST(Cache, FreshMarksLastTheFrameThatPublished) {
   ASSERT_GT(resident.size(), 10u) << "perlin's surface bricks around the eye";
   std::vector<uint32_t> before = cache.entries();
 
-  // The next frame, same eye: every mark settled, every slot kept, CLEAR bricks still CLEAR (with
-  // their boxes: clear_boxes.h), nothing else changed; the lookups read the same bricks.
+  // The next frame, same eye: every mark settled, every slot kept, EMPTY and CLEAR bricks still
+  // EMPTY and CLEAR (with their boxes: table_boxes.h), nothing else changed; the lookups read the
+  // same bricks.
   cache.beginFrame(frameAt(eye, 1));
   for (size_t i = 0; i < cache.entries().size(); ++i) {
     uint32_t was = before[i], now = cache.entries()[i];
@@ -208,6 +209,8 @@ TEST(Cache, FreshMarksLastTheFrameThatPublished) {
       EXPECT_EQ(now, slotOf(was)) << "entry " << i;
     } else if (was == ENTRY_CLEAR) {
       EXPECT_TRUE(isClearEntry(now)) << "entry " << i;
+    } else if (isEmptyEntry(was)) {
+      EXPECT_TRUE(isEmptyEntry(now)) << "entry " << i;
     } else {
       EXPECT_EQ(now, was) << "entry " << i;
     }
@@ -783,12 +786,14 @@ TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
   EXPECT_EQ(v.counters[COUNTER_FREE_NEXT], static_cast<uint32_t>(resident));
 }
 
-// The CLEAR bricks of a frame grow boxes at the next frame's start from the bricks the table
-// knows zero (clear_boxes.h). Every box names bricks zero at its level: each brick of it, evaluated
-// sample by sample (its corners and two inside), is all zero. A ray leaves a box with one lookup:
-// every ray marches the same colour, bit for bit, as it did while the cache filled and as it does
-// when it leaves each CLEAR brick alone, in fewer lookups.
-TEST(Cache, ClearBoxesNameZeroBricksAndCutLookupsNotColours) {
+// The EMPTY and CLEAR bricks of a frame grow boxes at the next frame's start from the bricks the
+// table knows (table_boxes.h). Every CLEAR box names bricks zero at its level, every EMPTY box
+// bricks empty at every level: each brick of it, evaluated sample by sample (its corners and two
+// inside), is all zero, and flagged empty for an EMPTY box. A ray leaves a box with one lookup:
+// every ray marches the same colour, bit for bit, as it did while the cache filled, as it did
+// from the full cache before the boxes grew, and as it does when it leaves each CLEAR brick alone,
+// in fewer lookups than both.
+TEST(Cache, TableBoxesNameZeroOrEmptyBricksAndCutLookupsNotColours) {
   std::mt19937 rng(6);
   for (const char* scene : {"perlin", "fbm"}) {
     StartFrame start(scene, 60000);
@@ -800,44 +805,67 @@ TEST(Cache, ClearBoxesNameZeroBricksAndCutLookupsNotColours) {
       filled.push_back(marchFilling(f.primaryRay(pixel % f.width, pixel / f.width), f, cache,
                                     info.world, [](const BrickKey&) {})
                            .colour);
-    uint32_t listed = v.counters[COUNTER_CLEAR];
+    const uint32_t listed = v.counters[COUNTER_LISTED];
+    EXPECT_EQ(listed, v.counters[COUNTER_EMPTY] + v.counters[COUNTER_CLEAR]) << scene;
+    // Every ray's march from the full cache, before the boxes grow: its colour and lookups.
+    auto marchAll = [&](auto makeAccess, long& lookups) {
+      for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
+        RayState s = initialRayState();
+        auto access = makeAccess();
+        Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
+        ASSERT_EQ(march(ray, f.lod, s, access), MarchResult::Finished) << scene << " " << pixel;
+        ASSERT_EQ(std::memcmp(&s.colour, &filled[pixel], sizeof(Vec4f)), 0) << scene << pixel;
+        lookups += access.lookups;
+      }
+    };
+    long before = 0;
+    marchAll([&] { return CachedAccess<BrickPool>{v, pool, f.lod}; }, before);
+    const std::vector<uint32_t> old = cache.entries();
     cache.beginFrame(f);  // the same frame again: the boxes grow
     v = cache.view();
-    int boxes = 0, bigger = 0;
+    int boxes[2] = {0, 0}, grown[2] = {0, 0};  // CLEAR, EMPTY
     const Clipmap& m = cache.clipmap();
     for (int level = 0; level < m.levels; ++level)
       for (int z = 0; z < m.width; ++z)
         for (int y = 0; y < m.width; ++y)
           for (int x = 0; x < m.width; ++x) {
             Vec3i g = m.windowOrigin[level] + Vec3i{x, y, z};
-            uint32_t e = cache.entries()[m.entryIndex(level, g)];
-            if (!isClearEntry(e) || e == ENTRY_CLEAR) continue;
-            EmptyReach r = emptyReach(e);
-            bigger += r.below.x + r.above.x + r.below.y + r.above.y + r.below.z + r.above.z > 6;
-            if (++boxes % 16 == 1) {
-              ASSERT_EQ(nonEmptyInBox(info.world, {g, level}, e, rng, 2, 1, true), "") << scene;
+            const uint32_t i = m.entryIndex(level, g), e = cache.entries()[i];
+            const bool empty = isEmptyEntry(e);
+            if (!empty && !(isClearEntry(e) && e != ENTRY_CLEAR)) continue;
+            if (empty && !isEmptyEntry(old[i])) ADD_FAILURE() << "an entry became EMPTY";
+            if (e == old[i]) continue;
+            EmptyReach was = emptyReach(old[i]), r = emptyReach(e);
+            auto covers = [](Vec3i p, Vec3i q) { return p.x >= q.x && p.y >= q.y && p.z >= q.z; };
+            if (empty) {  // an EMPTY box grows from the producer's
+              ASSERT_TRUE(covers(r.below, was.below) && covers(r.above, was.above)) << scene;
+            }
+            grown[empty] += 1;
+            if (++boxes[empty] % 16 == 1) {
+              ASSERT_EQ(nonEmptyInBox(info.world, {g, level}, e, rng, 2, 1, !empty), "") << scene;
             }
           }
-    long lookups[2] = {0, 0};
+    // A ray that leaves a grown box may land in a brick it skipped before inside another brick's
+    // EMPTY box, never produced: produced now (EMPTY), as the next frame's rays would.
+    int landed = 0;
     for (int pixel = 0; pixel < f.width * f.height; ++pixel) {
-      Ray ray = f.primaryRay(pixel % f.width, pixel / f.width);
-      RayState sa = initialRayState(), sb = initialRayState();
-      CachedAccess<BrickPool> a{v, pool, f.lod};
-      ClearBricksAlone b{{v, pool, f.lod}};
-      ASSERT_EQ(march(ray, f.lod, sa, a), MarchResult::Finished) << scene << " " << pixel;
-      ASSERT_EQ(march(ray, f.lod, sb, b), MarchResult::Finished) << scene << " " << pixel;
-      ASSERT_EQ(std::memcmp(&sa.colour, &filled[pixel], sizeof(Vec4f)), 0) << scene << pixel;
-      ASSERT_EQ(std::memcmp(&sb.colour, &filled[pixel], sizeof(Vec4f)), 0) << scene << pixel;
-      lookups[0] += a.lookups;
-      lookups[1] += b.lookups;
+      Vec4f c = marchFilling(f.primaryRay(pixel % f.width, pixel / f.width), f, cache, info.world,
+                             [&](const BrickKey&) { ++landed; })
+                    .colour;
+      ASSERT_EQ(std::memcmp(&c, &filled[pixel], sizeof(Vec4f)), 0) << scene << pixel;
     }
+    long lookups[2] = {0, 0};
+    marchAll([&] { return CachedAccess<BrickPool>{v, pool, f.lod}; }, lookups[0]);
+    marchAll([&] { return ClearBricksAlone{{v, pool, f.lod}}; }, lookups[1]);
     std::printf(
-        "[ measure ] %s: %u CLEAR bricks listed, %d boxes (%d beyond one brick a face); "
-        "lookups %ld, %ld with each CLEAR brick alone\n",
-        scene, listed, boxes, bigger, lookups[0], lookups[1]);
-    EXPECT_GT(boxes, 100) << scene;
-    EXPECT_GT(bigger, 0) << scene;
+        "[ measure ] %s: %u EMPTY and CLEAR bricks listed, boxes grown: %d CLEAR, %d EMPTY; "
+        "%d bricks produced after; lookups %ld before, %ld after, %ld with each CLEAR brick "
+        "alone\n",
+        scene, listed, grown[0], grown[1], landed, before, lookups[0], lookups[1]);
+    EXPECT_GT(grown[0], 100) << scene;
+    EXPECT_GT(grown[1], 100) << scene;
     EXPECT_LT(lookups[0], lookups[1]) << scene;
+    EXPECT_LT(lookups[0], before) << scene;
   }
 }
 

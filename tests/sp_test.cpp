@@ -56,7 +56,7 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SpTest, ::testing::Range(0, SCENE_COUNT));
 
 // A still camera: the same frame rendered again gives the same image and soon produces nothing.
 // The second render may produce a few bricks: the CLEAR boxes grown after the first (cache/
-// clear_boxes.h) lead some rays to land in bricks they skipped before inside another brick's EMPTY
+// table_boxes.h) lead some rays to land in bricks they skipped before inside another brick's EMPTY
 // box, never produced (random-spheres at 64x40: 10, then none).
 TEST(Sp, StillCameraProducesNothingAfterTheFirstFrames) {
   SequenceOptions o;

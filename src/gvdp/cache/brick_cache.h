@@ -19,8 +19,11 @@
 //                                               for every counter, in one pass (cache_ops.h)
 //   unmapSlots(view, n, timeline)               unmapFreeSlot(view, i) for i < n (cache_ops.h)
 //   settleFresh(view, n, timeline)              settleFreshSlot(view, i) for i < n (cache_ops.h)
-//   growClearBoxes(view, n, timeline)           growClearBox(group, view, i) for the listed
-//                                               items i < n (clear_boxes.h: clearItems)
+//   growTableBoxes(view, timeline)              growTableBox(group, view, i) for the listed
+//                                               items (table_boxes.h: listedItems), maybe
+//                                               while the frame's kernels run
+//   tableBoxesReady()                           marks the frame's start done: a growth may begin
+//   joinTableBoxes()                            waits (the backend's stream does) for them
 //   lruBytes(), LRU_NAME                        what the LRU order holds, for the memory report
 #pragma once
 
@@ -51,7 +54,7 @@ class BrickCache {
     GVDP_INPUT_CHECK(poolBricks >= 1 && poolBricks < SLOT_LIMIT, "bad --pool-bricks ", poolBricks);
     texels_ = Buffer<Rgba8>(static_cast<size_t>(poolBricks) * BRICK_SAMPLE_COUNT);
     occupancy_ = Buffer<uint64_t>(poolBricks);
-    clearKeys_ = Buffer<BrickKey>(CLEAR_LIST_CAPACITY);
+    for (auto& list : listedKeys_) list = Buffer<BrickKey>(BOX_LIST_CAPACITY);
   }
   BrickCache(const BrickCache&) = delete;
   BrickCache& operator=(const BrickCache&) = delete;
@@ -67,8 +70,7 @@ class BrickCache {
   // the request queue, refill the free slot list.
   void beginFrame(const FrameSetup& frame) {
     timeline_ = frame.timeline;  // the last frame's may be gone
-    // The last frame's CLEAR bricks grow their boxes, in its clipmap, before its counters go.
-    if (frame_ > 0 && entries_.size()) ops_.growClearBoxes(view(), CLEAR_LIST_CAPACITY, timeline_);
+    ops_.joinTableBoxes();       // the last growth's stores land before the table changes
     // The last frame's fresh marks settled, the counters zeroed and the deadline set: one pass.
     ops_.startFrame(view(), freeSlots_ ? poolBricks_ : 0u, budgeted() ? budgetNs_ : int64_t{-1},
                     timeline_);
@@ -97,7 +99,22 @@ class BrickCache {
     }
     takeFreeList();
     refills_ = 0;
+    ops_.tableBoxesReady();
+    if (!deferTableBoxes_) growTableBoxes();
   }
+
+  // The last frame's EMPTY and CLEAR bricks grow their boxes, in this frame's clipmap, after its
+  // start, while its rays run (a CUDA cache's on a stream of its own): they read what the table
+  // knows, which only grows while a frame runs, and store over entries nothing else writes in it.
+  // In beginFrame, unless the scheduler calls it itself after its frame's kernels are queued
+  // (deferTableBoxes: pt, whose persistent kernel should find the SMs free).
+  void growTableBoxes() {
+    if (frame_ <= 1) return;
+    CacheView last = view();
+    last.listedKeys = listedKeys_[(frame_ + 1) & 1].data();
+    ops_.growTableBoxes(last, timeline_);
+  }
+  void deferTableBoxes() { deferTableBoxes_ = true; }
 
   // Mid-frame refill (paper 3.3.4) from the slots not used in this frame, least recently used
   // first; returns the slots obtained. Only between kernels (the fresh marks are settled).
@@ -125,8 +142,8 @@ class BrickCache {
     v.freeSlots = freeSlots_;
     v.requests = requests_.data();
     v.requestCapacity = static_cast<uint32_t>(requests_.size());
-    v.clearKeys = clearKeys_.data();
-    v.clearCapacity = static_cast<uint32_t>(clearKeys_.size());
+    v.listedKeys = listedKeys_[frame_ & 1].data();  // the last frame's: the other
+    v.listCapacity = BOX_LIST_CAPACITY;
     v.counters = counters_.data();
     v.frame = frame_;
     v.degraded = degraded_ ? 1u : 0u;
@@ -173,11 +190,14 @@ class BrickCache {
   }
 
   MemoryReport memory() const {
-    MemoryReport m{
-        {"brick_pool", bytesOf(texels_)},         {"brick_occupancy", bytesOf(occupancy_)},
-        {"indirection_table", bytesOf(entries_)}, {"inverse_table", bytesOf(inverse_)},
-        {"timestamps", bytesOf(timestamps_)},     {Ops::LRU_NAME, ops_.lruBytes()},
-        {"request_queue", bytesOf(requests_)},    {"clear_list", bytesOf(clearKeys_)}};
+    MemoryReport m{{"brick_pool", bytesOf(texels_)},
+                   {"brick_occupancy", bytesOf(occupancy_)},
+                   {"indirection_table", bytesOf(entries_)},
+                   {"inverse_table", bytesOf(inverse_)},
+                   {"timestamps", bytesOf(timestamps_)},
+                   {Ops::LRU_NAME, ops_.lruBytes()},
+                   {"request_queue", bytesOf(requests_)},
+                   {"box_lists", bytesOf(listedKeys_[0]) + bytesOf(listedKeys_[1])}};
     if (rayCosts_.size()) m.push_back({"ray_costs", bytesOf(rayCosts_)});  // render --cost-map
     return m;
   }
@@ -210,7 +230,8 @@ class BrickCache {
   ClipmapTracker tracker_;
   Clipmap clipmap_{};
   Buffer<uint32_t> entries_, timestamps_, counters_, rayCosts_;
-  Buffer<BrickKey> inverse_, requests_, clearKeys_;
+  bool deferTableBoxes_ = false;
+  Buffer<BrickKey> inverse_, requests_, listedKeys_[2];  // this frame's list and the last's
   Buffer<Rgba8> texels_;
   Buffer<uint64_t> occupancy_;
   Ops ops_;

@@ -7,8 +7,8 @@
 #include "gvdp/base/clock.h"
 #include "gvdp/base/parallel.h"
 #include "gvdp/cache/cache_ops.h"
-#include "gvdp/cache/clear_boxes.h"
 #include "gvdp/cache/lru_order.h"
+#include "gvdp/cache/table_boxes.h"
 #include "gvdp/profile/timeline.h"
 
 namespace gvdp::detail {
@@ -66,10 +66,10 @@ void HostCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineVie
   for (uint32_t i = 0; i < n; ++i) settleFreshSlot(v, i);
 }
 
-void HostCacheOps::growClearBoxes(const CacheView& v, uint32_t n, const TimelineView&) {
-  uint32_t items = std::min(clearItems(v), n);
+void HostCacheOps::growTableBoxes(const CacheView& v, const TimelineView&) {
+  uint32_t items = listedItems(v);
   parallelFor(
-      items, [&](int64_t i) { growClearBox(ThreadScope{}, v, static_cast<uint32_t>(i)); }, 16,
+      items, [&](int64_t i) { growTableBox(ThreadScope{}, v, static_cast<uint32_t>(i)); }, 16,
       static_cast<uint8_t>(TaskKind::Cache));
 }
 

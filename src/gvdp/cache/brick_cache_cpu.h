@@ -29,7 +29,9 @@ class HostCacheOps {
                                 uint32_t* counters, const TimelineView&);
   static void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters);
   static void settleFresh(const CacheView& v, uint32_t n, const TimelineView&);
-  static void growClearBoxes(const CacheView& v, uint32_t n, const TimelineView&);
+  static void growTableBoxes(const CacheView& v, const TimelineView&);
+  static void tableBoxesReady() {}
+  static void joinTableBoxes() {}  // grown before growTableBoxes returns
   static void startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
                          const TimelineView&);
   static void unmapSlots(const CacheView& v, uint32_t n, const TimelineView&);

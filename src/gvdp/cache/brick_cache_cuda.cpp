@@ -14,6 +14,16 @@ CudaCacheOps::CudaCacheOps(uint32_t poolBricks, cudaStream_t stream)
   std::vector<uint32_t> slots(poolBricks);
   std::iota(slots.begin(), slots.end(), 0u);  // a pool never used, in order
   writeDevice(order_.data(), slots.data(), order_.bytes(), stream_);
+  GVDP_CUDA_CHECK(cudaStreamCreateWithFlags(&boxes_, cudaStreamNonBlocking));
+  GVDP_CUDA_CHECK(cudaEventCreateWithFlags(&queued_, cudaEventDisableTiming));
+  GVDP_CUDA_CHECK(cudaEventCreateWithFlags(&grown_, cudaEventDisableTiming));
+}
+
+CudaCacheOps::~CudaCacheOps() {
+  cudaStreamSynchronize(boxes_);  // no error thrown from here: the buffers go after it
+  cudaEventDestroy(grown_);
+  cudaEventDestroy(queued_);
+  cudaStreamDestroy(boxes_);
 }
 
 void CudaCacheOps::zero(uint32_t* p, size_t n) const {
@@ -53,8 +63,18 @@ void CudaCacheOps::settleFresh(const CacheView& v, uint32_t n, const TimelineVie
   launchSettleFresh(v, n, t, stream_);
 }
 
-void CudaCacheOps::growClearBoxes(const CacheView& v, uint32_t n, const TimelineView& t) const {
-  launchGrowClearBoxes(v, n, t, stream_);
+void CudaCacheOps::tableBoxesReady() const {
+  GVDP_CUDA_CHECK(cudaEventRecord(queued_, stream_));
+}
+
+void CudaCacheOps::growTableBoxes(const CacheView& v, const TimelineView& t) const {
+  GVDP_CUDA_CHECK(cudaStreamWaitEvent(boxes_, queued_));
+  launchGrowTableBoxes(v, t, boxes_);
+  GVDP_CUDA_CHECK(cudaEventRecord(grown_, boxes_));
+}
+
+void CudaCacheOps::joinTableBoxes() const {
+  GVDP_CUDA_CHECK(cudaStreamWaitEvent(stream_, grown_));  // none recorded yet: no wait
 }
 
 void CudaCacheOps::startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,

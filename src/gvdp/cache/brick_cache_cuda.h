@@ -17,6 +17,9 @@ class CudaCacheOps {
 
   // Every operation runs on `stream` (the scheduler's).
   CudaCacheOps(uint32_t poolBricks, cudaStream_t stream);
+  ~CudaCacheOps();
+  CudaCacheOps(const CudaCacheOps&) = delete;
+  CudaCacheOps& operator=(const CudaCacheOps&) = delete;
 
   template <class T>
   void fillBytes(DeviceBuffer<T>& b, int byte) const {
@@ -30,13 +33,19 @@ class CudaCacheOps {
   void unmapSlots(const CacheView& v, uint32_t n, const TimelineView& t) const;
   void countUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint32_t* counters) const;
   void settleFresh(const CacheView& v, uint32_t n, const TimelineView& t) const;
-  void growClearBoxes(const CacheView& v, uint32_t n, const TimelineView& t) const;
+  // On a stream of its own, after the work queued on `stream` before tableBoxesReady, beside
+  // what follows it (joinTableBoxes: `stream` waits for it).
+  void tableBoxesReady() const;
+  void growTableBoxes(const CacheView& v, const TimelineView& t) const;
+  void joinTableBoxes() const;
   void startFrame(const CacheView& v, uint32_t settle, int64_t deadlineNs,
                   const TimelineView& t) const;
   size_t lruBytes() const;
 
  private:
   cudaStream_t stream_;
+  cudaStream_t boxes_;                   // the table boxes' growth (growTableBoxes)
+  cudaEvent_t queued_, grown_;           // stream_'s work before it; its end
   DeviceBuffer<uint32_t> order_, next_;  // the LRU order and the next, built from it (lru_order.h)
   DeviceBuffer<uint64_t> tileSizes_;     // each tile's part sizes (launchLruOrder)
   uint32_t builtAt_ = 0;                 // the frame order_ was built in

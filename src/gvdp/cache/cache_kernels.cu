@@ -7,8 +7,8 @@
 #include "gvdp/base/cooperation.h"
 #include "gvdp/base/dependent_launch.cuh"
 #include "gvdp/cache/cache_kernels.h"
-#include "gvdp/cache/clear_boxes.h"
 #include "gvdp/cache/lru_order.h"
+#include "gvdp/cache/table_boxes.h"
 #include "gvdp/profile/parallel_for.cuh"
 
 namespace gvdp::detail {
@@ -167,15 +167,28 @@ void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& t
                   [=] __device__(uint32_t i) { settleFreshSlot(cache, i); });
 }
 
-void launchGrowClearBoxes(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+// Blocks of one warp, each taking the next item (COUNTER_GROWN_NEXT) until none is left: a block
+// runs where a frame's kernels leave room, beside them or as they end, and takes less work if it
+// starts late.
+__global__ void growTableBoxesKernel(CacheView cache, TimelineView timeline) {
+  BlockTimer timer(timeline, TaskKind::Cache);
+  const WarpScope warp{static_cast<int>(threadIdx.x)};
+  for (;;) {
+    uint32_t item = 0;
+    if (threadIdx.x == 0) item = atomicAdd(&cache.counters[COUNTER_GROWN_NEXT], 1u);
+    item = __shfl_sync(0xffffffffu, item, 0);
+    if (item >= listedItems(cache)) return;
+    growTableBox(warp, cache, item);
+  }
+}
+
+void launchGrowTableBoxes(const CacheView& cache, const TimelineView& timeline,
                           cudaStream_t stream) {
-  parallelForCuda("cache: grow clear boxes", stream, n * 32u, timeline, TaskKind::Cache,
-                  [=] __device__(uint32_t i) {
-                    // Whole warps: n * 32 threads, and the count the same for a warp's lanes.
-                    uint32_t item = i / 32u;
-                    if (item < clearItems(cache))
-                      growClearBox(WarpScope{static_cast<int>(i % 32u)}, cache, item);
-                  });
+  constexpr int BLOCKS_PER_SM = 8;
+  NvtxRange range("cache: grow table boxes");
+  static const int sms = smCount();
+  growTableBoxesKernel<<<sms * BLOCKS_PER_SM, 32, 0, stream>>>(cache, timeline);
+  GVDP_CUDA_CHECK(cudaGetLastError());
 }
 
 void launchStartFrame(const CacheView& cache, uint32_t settle, int64_t deadlineNs,

@@ -26,8 +26,9 @@ void launchCountUnsampled(uint32_t* timestamps, uint32_t n, uint32_t frame, uint
 // counter (cache_ops.h), one launch.
 void launchStartFrame(const CacheView& cache, uint32_t settle, int64_t deadlineNs,
                       const TimelineView& timeline, cudaStream_t stream);
-// growClearBox(warp, cache, i) for the listed items i < n (clear_boxes.h), a warp each.
-void launchGrowClearBoxes(const CacheView& cache, uint32_t n, const TimelineView& timeline,
+// growTableBox(warp, cache, i) for the listed items (table_boxes.h: listedItems), a warp each,
+// in blocks of one warp that take items until none is left.
+void launchGrowTableBoxes(const CacheView& cache, const TimelineView& timeline,
                           cudaStream_t stream);
 // settleFreshSlot(cache, i) for i < n (cache_ops.h).
 void launchSettleFresh(const CacheView& cache, uint32_t n, const TimelineView& timeline,

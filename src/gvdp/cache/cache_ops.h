@@ -99,7 +99,8 @@ GVDP_HD GVDP_INLINE void settleFreshSlot(const CacheView& c, uint32_t i) {
 // order sets (buildLruOrder), and a budgeted frame's deadline (deadlineNs >= 0), set to
 // clockNanoseconds() + deadlineNs. Run beside settleFreshSlot, in one pass.
 GVDP_HD GVDP_INLINE void startFrameCounter(uint32_t* counters, uint32_t i, int64_t deadlineNs) {
-  if (i == COUNTER_FREE_NEXT || i == COUNTER_FREE_COUNT) return;
+  if (i == COUNTER_FREE_NEXT || i == COUNTER_FREE_COUNT || i == COUNTER_LISTED_LAST) return;
+  if (i == COUNTER_LISTED) counters[COUNTER_LISTED_LAST] = counters[COUNTER_LISTED];
   if (deadlineNs >= 0 && (i == COUNTER_DEADLINE || i == COUNTER_DEADLINE + 1)) {
     if (i == COUNTER_DEADLINE)
       *reinterpret_cast<uint64_t*>(counters + i) =
@@ -127,18 +128,17 @@ GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
 }
 
 // Algorithm 2, the end: publish what production found, an empty brick (its EMPTY entry,
-// brick_key.h: emptyEntry), a clear one (ENTRY_CLEAR, listed: clear_boxes.h), a slot, or MAX_SLOTS
-// when no slot was left. The samples of a resident brick must be written (and fenced, by the caller
+// brick_key.h: emptyEntry), a clear one (ENTRY_CLEAR), a slot, or MAX_SLOTS when no slot was left.
+// EMPTY and CLEAR bricks are listed: their boxes grow from the table at the next frame's start
+// (table_boxes.h). The samples of a resident brick must be written (and fenced, by the caller
 // on the GPU) before this.
 GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, uint32_t found) {
   uint32_t index = c.clipmap.entryIndex(key.level, key.brick);
-  if (isEmptyEntry(found)) {
+  if (isEmptyEntry(found) || found == ENTRY_CLEAR) {
     storeRelease32(&c.entries[index], found);
-    atomicAdd32(&c.counters[COUNTER_EMPTY], 1u);
-  } else if (found == ENTRY_CLEAR) {
-    storeRelease32(&c.entries[index], found);
-    uint32_t i = atomicAdd32(&c.counters[COUNTER_CLEAR], 1u);
-    if (i < c.clearCapacity) c.clearKeys[i] = key;  // its box grown at the next frame's start
+    atomicAdd32(&c.counters[found == ENTRY_CLEAR ? COUNTER_CLEAR : COUNTER_EMPTY], 1u);
+    uint32_t i = atomicAdd32(&c.counters[COUNTER_LISTED], 1u);
+    if (i < c.listCapacity) c.listedKeys[i] = key;
   } else if (found == MAX_SLOTS) {
     storeRelease32(&c.entries[index], ENTRY_MISSING);  // retried after a refill, or degraded
     atomicAdd32(&c.counters[COUNTER_FAILED], 1u);

@@ -38,7 +38,10 @@ enum CacheCounter : int {
   // The free slot list's length (freeListLength), written on the backend by the LRU sort: the
   // host never waits for it at a frame's start.
   COUNTER_FREE_COUNT,
-  COUNTER_CLEAR,  // bricks found clear (brick_key.h: ENTRY_CLEAR)
+  COUNTER_CLEAR,        // bricks found clear (brick_key.h: ENTRY_CLEAR)
+  COUNTER_LISTED,       // bricks listed for a table box (table_boxes.h), EMPTY and CLEAR
+  COUNTER_LISTED_LAST,  // the last frame's, whose boxes grow in this one (startFrameCounter)
+  COUNTER_GROWN_NEXT,   // of those, the next one a GPU warp takes (launchGrowTableBoxes)
   // The march's 64-bit counters (MarchCounter), in a 128-byte line of their own: every warp's
   // march adds to them, and a load of a word in a line under atomics waits behind them (the
   // degraded test's load of COUNTER_FAILED did, on pt's march: ncu, H100).
@@ -88,9 +91,10 @@ GVDP_HD GVDP_INLINE void countSlotMark(uint32_t* counters, SlotMark m) {
 // a brick not ready: the productions the ray waited on, one after the other).
 enum RayCostWord : int { RAY_COST_LOOKUPS, RAY_COST_SAMPLES, RAY_COST_STOPS, RAY_COST_WORDS };
 
-// CLEAR bricks listed per frame for their boxes (clear_boxes.h); those beyond stay alone (a frame
-// from a cold cache publishes more).
-constexpr uint32_t CLEAR_LIST_CAPACITY = 1u << 16;
+// EMPTY and CLEAR bricks listed per frame for their table boxes (table_boxes.h); those beyond keep
+// the box they have (a frame from a cold cache publishes more: perlin's first frame at 300x200,
+// 235 000 EMPTY bricks; later ones 8 000).
+constexpr uint32_t BOX_LIST_CAPACITY = 1u << 18;
 
 struct CacheView {
   Clipmap clipmap;
@@ -100,8 +104,9 @@ struct CacheView {
   const uint32_t* freeSlots;  // freeCount() valid entries
   BrickKey* requests;         // production queue
   uint32_t requestCapacity;
-  BrickKey* clearKeys;  // the frame's CLEAR bricks, in publication order (clear_boxes.h)
-  uint32_t clearCapacity;
+  BrickKey* listedKeys;  // the frame's EMPTY and CLEAR bricks, as published (table_boxes.h);
+                         // in a growth's view, the last frame's
+  uint32_t listCapacity;
   uint32_t* counters;         // CacheCounter
   uint32_t frame;             // current frame stamp (>= 1)
   uint32_t degraded;          // nonzero: no production; rays fall back to coarser levels

@@ -215,8 +215,9 @@ GVDP_HD GVDP_INLINE void slabOf(const EmptyReachCodes& inner, const EmptyReachCo
 // world's bound: a test is the slab of one face (Alone), of a face of the faces grown together
 // (Together, and ahead: once or twice), or a parent's brick (Parent, and ahead).
 //
-// The same growth makes a CLEAR brick's box from the entries already known zero (KnownZeroBound,
-// growClearBox): a box of bricks of one level, which says nothing of the parent.
+// The same growth makes boxes from the entries already known (table_boxes.h: growTableBox): a
+// CLEAR brick's of bricks known zero at its level, an EMPTY brick's of bricks known empty, from
+// the box the producer grew; neither climbs to the parent.
 constexpr int GROW_TESTS = 6, GROW_AHEAD_TESTS = 3 * 6 + 1, GROW_AHEAD_MEMBERS = GROW_AHEAD_TESTS;
 
 // The producer's emptiness bound as growBoxes tests it (boxBoundedEmpty): EMPTY boxes, which
@@ -224,8 +225,10 @@ constexpr int GROW_TESTS = 6, GROW_AHEAD_TESTS = 3 * 6 + 1, GROW_AHEAD_MEMBERS =
 template <class P>
 struct ProducerBound {
   const P& producer;
-  static constexpr bool ZERO_AT_LEVEL = false;  // true: a CLEAR box (clear_boxes.h)
+  static constexpr bool CLIMBS = true;  // to the parent, grown ahead (table bounds: false)
   static constexpr int MAX_CODE = MAX_EMPTY_REACH_CODE;
+  GVDP_HD EmptyReachCodes start() const { return {}; }  // from the brick alone
+  GVDP_HD uint32_t entry(const EmptyReachCodes& c) const { return emptyEntry(c); }
   GVDP_HD int partsFor(int members, int tests) const { return boxPartsFor(members, tests); }
   GVDP_HD bool clear(const BrickKey& k, Vec3i lo, Vec3i hi, int part, int parts) const {
     return boxBoundedEmpty(producer, k, lo, hi, part, parts);
@@ -237,21 +240,21 @@ GVDP_HD GVDP_INLINE void growBoxes(const Scope& group, const Bound& bound, Brick
                                    const Clipmap& clipmap, Publish&& publish) {
   enum class Step : uint8_t { Alone, Together, Parent };
   constexpr int PARENT_TEST = GROW_AHEAD_TESTS - 1;  // test bits: kind * 6 + face, then this
-  const bool ahead = !Bound::ZERO_AT_LEVEL && group.size() >= GROW_AHEAD_MEMBERS;
+  const bool ahead = Bound::CLIMBS && group.size() >= GROW_AHEAD_MEMBERS;
   const int tests = ahead ? GROW_AHEAD_TESTS : GROW_TESTS;
   const int parts = bound.partsFor(group.size(), tests);
-  Step step = Step::Alone;
-  EmptyReachCodes codes{}, all{}, twice{};
-  ExitFaces exits = exitFacesFrom(clipmap, key);
-  uint32_t growing = exits.faces, cleared = 0u, again = 0u;  // one bit per face
-  int parent = Bound::ZERO_AT_LEVEL ? 0 : -1;                // its test's answer (-1: none yet)
   auto growable = [&](uint32_t faces, const EmptyReachCodes& c) {
     uint32_t g = 0u;
     for (int f = 0; f < 6; ++f)
       if ((faces >> f & 1u) && c.face[f] < Bound::MAX_CODE) g |= 1u << f;
     return g;
   };
-  auto level = [&] {  // the next brick's growth, from itself
+  Step step = Step::Alone;
+  EmptyReachCodes codes = bound.start(), all{}, twice{};
+  ExitFaces exits = exitFacesFrom(clipmap, key);
+  uint32_t growing = growable(exits.faces, codes), cleared = 0u, again = 0u;  // a bit per face
+  int parent = Bound::CLIMBS ? -1 : 0;  // its test's answer (-1: none yet)
+  auto level = [&] {                    // the next brick's growth, from itself
     codes = {};
     exits = exitFacesFrom(clipmap, key);
     growing = exits.faces;
@@ -260,7 +263,7 @@ GVDP_HD GVDP_INLINE void growBoxes(const Scope& group, const Bound& bound, Brick
   };
   for (;;) {
     if (step != Step::Parent && growing == 0u) {  // grown
-      uint32_t entry = Bound::ZERO_AT_LEVEL ? clearEntry(codes) : emptyEntry(codes);
+      uint32_t entry = bound.entry(codes);
       if (!publish(key, entry) || parent == 0) return;
       key = {halfFloor(key.brick), key.level + 1};
       if (parent < 0) {

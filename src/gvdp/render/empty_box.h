@@ -33,6 +33,12 @@ struct EmptyReachCodes {
     for (int f = 0; f < 6; ++f) c |= static_cast<uint32_t>(face[f]) << (4 * f);
     return c;
   }
+  GVDP_HD static EmptyReachCodes unpacked(uint32_t codes) {
+    EmptyReachCodes c{};
+    for (int f = 0; f < 6; ++f)
+      c.face[f] = static_cast<int>(codes >> (4 * f)) & MAX_EMPTY_REACH_CODE;
+    return c;
+  }
 };
 
 }  // namespace gvdp::detail

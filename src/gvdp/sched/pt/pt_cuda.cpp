@@ -38,6 +38,7 @@ class PtCuda final : public SpFrameCuda {
     fillDevice(productionCounters_.data(), 0, productionCounters_.bytes(), stream());
     fillDevice(productionKey_.data(), 0, productionKey_.bytes(), stream());
     fillDevice(stage_.data(), 0, stage_.bytes(), stream());
+    cache_.deferTableBoxes();  // grown after the worker's launch (renderFrame)
   }
 
   MemoryReport memory() const override {
@@ -61,6 +62,7 @@ class PtCuda final : public SpFrameCuda {
       NvtxRange kernel("pt persistent kernel");
       cudaProducer().launchPtFrame(ctx, cache_.pool(), blocks_, stream());
     }
+    cache_.growTableBoxes();  // deferred: its blocks take what the worker's leave
     launchResolve(f, buffers_.payload.data(), buffers_.image.data(), buffers_.counters.data(),
                   stream());  // its count zeroed by the frame's start
     previous_ = f;
