@@ -142,7 +142,7 @@ class BrickCache {
     v.freeSlots = freeSlots_;
     v.requests = requests_.data();
     v.requestCapacity = static_cast<uint32_t>(requests_.size());
-    v.listedKeys = listedKeys_[frame_ & 1].data();  // the last frame's: the other
+    v.listedKeys = listedKeys_[frame_ & 1].data();  // this frame's; the last frame's: the other
     v.listCapacity = BOX_LIST_CAPACITY;
     v.counters = counters_.data();
     v.frame = frame_;

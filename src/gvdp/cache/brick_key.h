@@ -28,8 +28,8 @@ constexpr uint32_t MAX_PRODUCTION_TASKS = 0x70000000u;
 // An EMPTY entry says more than "this brick is empty": the box of bricks of its level that
 // reaches below[a] bricks down and above[a] bricks up from it along each axis a is empty too, by
 // the producer's box bound (cache/produce.h: growEmptyBoxes), then grown over the bricks the table
-// knows empty at the next frame's start (cache/table_boxes.h), so a ray leaves the whole box with
-// one lookup. The entry is ENTRY_EMPTY with the box's reach codes (render/empty_box.h) in its
+// knows empty in the next frame (cache/table_boxes.h), so a ray leaves the whole box with one
+// lookup. The entry is ENTRY_EMPTY with the box's reach codes (render/empty_box.h) in its
 // low 24 bits; ENTRY_EMPTY itself is the plain EMPTY brick.
 constexpr uint32_t ENTRY_EMPTY = 0xf0000000u;
 constexpr uint32_t EMPTY_CODES_MASK = 0xffffffu;
@@ -43,8 +43,8 @@ static_assert(ENTRY_EMPTY >= ENTRY_PRODUCTION_TASK + MAX_PRODUCTION_TASKS,
 // walkthroughs leave two thirds of their resident bricks all zero, forest's and the spheres' a
 // quarter (frame 12, CPU, 300x200 at --lod-width 1500). Like an EMPTY entry it names a box, in
 // its low 24 bits, ENTRY_CLEAR alone the brick alone: the bricks of that box are zero at its
-// level, as the table knew them when the box grew, at the next frame's start (cache/
-// table_boxes.h: growTableBox), so a ray of that level leaves the box with one lookup; a finer
+// level, as the table knew them when the box grew, in the next frame (cache/table_boxes.h:
+// growTableBox), so a ray of that level leaves the box with one lookup; a finer
 // level may hold matter in it.
 constexpr uint32_t ENTRY_CLEAR = 0xf1000000u;
 static_assert((ENTRY_EMPTY | EMPTY_CODES_MASK) < ENTRY_CLEAR, "CLEAR entries overlap EMPTY ones");

@@ -129,7 +129,7 @@ GVDP_HD GVDP_INLINE uint32_t takeFreeSlot(const CacheView& c) {
 
 // Algorithm 2, the end: publish what production found, an empty brick (its EMPTY entry,
 // brick_key.h: emptyEntry), a clear one (ENTRY_CLEAR), a slot, or MAX_SLOTS when no slot was left.
-// EMPTY and CLEAR bricks are listed: their boxes grow from the table at the next frame's start
+// EMPTY and CLEAR bricks are listed: their boxes grow from the table in the next frame
 // (table_boxes.h). The samples of a resident brick must be written (and fenced, by the caller
 // on the GPU) before this.
 GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, uint32_t found) {

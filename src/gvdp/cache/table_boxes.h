@@ -1,9 +1,9 @@
-// Boxes grown between frames from the indirection table. A brick produced EMPTY or all zero (CLEAR)
-// is listed as it is published (cache_ops.h: publishBrick); at the next frame's start each listed
-// brick grows its box over the bricks the table already knows, as an EMPTY brick's box grows by
-// the producer's bound (produce.h: growBoxes). By then the rays of the frame that produced it have
-// produced the bricks beyond it too, each tested alone, where the producer's bound tests a whole
-// slab from its centre and loosens with it.
+// Boxes grown from the indirection table. A brick produced EMPTY or all zero (CLEAR) is listed as
+// it is published (cache_ops.h: publishBrick); in the next frame, after its start and beside its
+// rays (BrickCache::growTableBoxes), each listed brick grows its box over the bricks the table
+// already knows, as an EMPTY brick's box grows by the producer's bound (produce.h: growBoxes). By
+// then the rays of the frame that produced it have produced the bricks beyond it too, each tested
+// alone, where the producer's bound tests a whole slab from its centre and loosens with it.
 // - A plain CLEAR brick's box: the bricks known zero at its level (EMPTY, CLEAR, or not resident
 //   under an EMPTY ancestor, as the march skips them: CachedAccess::find). Near a terrain, inside
 //   the empty flag's margin, the bricks a grazing ray crosses one by one are mostly zero at their
