@@ -118,8 +118,7 @@ GVDP_HD GVDP_INLINE bool brickBoundedEmpty(const Scope& group, const P& producer
 
 // The reach codes with `faces` (a bit per face) one step further: 0 to 1, then two codes
 // (about twice the reach), up to `last`.
-GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces,
-                                               int last = MAX_EMPTY_REACH_CODE) {
+GVDP_HD GVDP_INLINE EmptyReachCodes grownCodes(EmptyReachCodes c, uint32_t faces, int last) {
   for (int f = 0; f < 6; ++f) {
     if (!(faces >> f & 1u)) continue;
     int next = c.face[f] == 0 ? 1 : c.face[f] + 2;

@@ -98,9 +98,9 @@ GVDP_HD GVDP_INLINE void growTableBox(const Scope& group, const CacheView& cache
     if (group.rank() == 0 && grown != e) storeRelaxed32(&cache.entries[index], grown);
     return false;
   };
-  const EmptyReachCodes codes = EmptyReachCodes::unpacked(e & EMPTY_CODES_MASK);
+  const EmptyReachCodes codes = EmptyReachCodes::unpacked(e & EMPTY_CODES_MASK);  // none: CLEAR
   if (e == ENTRY_CLEAR)
-    growBoxes(group, KnownBound<true>{cache, {}}, key, cache.clipmap, store);
+    growBoxes(group, KnownBound<true>{cache, codes}, key, cache.clipmap, store);
   else if (isEmptyEntry(e))
     growBoxes(group, KnownBound<false>{cache, codes}, key, cache.clipmap, store);
 }
