@@ -786,13 +786,13 @@ TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
   EXPECT_EQ(v.counters[COUNTER_FREE_NEXT], static_cast<uint32_t>(resident));
 }
 
-// The EMPTY and CLEAR bricks of a frame grow boxes at the next frame's start from the bricks the
-// table knows (table_boxes.h). Every CLEAR box names bricks zero at its level, every EMPTY box
-// bricks empty at every level: each brick of it, evaluated sample by sample (its corners and two
-// inside), is all zero, and flagged empty for an EMPTY box. A ray leaves a box with one lookup:
-// every ray marches the same colour, bit for bit, as it did while the cache filled, as it did
-// from the full cache before the boxes grew, and as it does when it leaves each CLEAR brick alone,
-// in fewer lookups than both.
+// The EMPTY and CLEAR bricks of a frame grow boxes in the next frame, after its start, from the
+// bricks the table knows (table_boxes.h). Every CLEAR box names bricks zero at its level, every
+// EMPTY box bricks empty at every level: each brick of it, evaluated sample by sample (its corners
+// and two inside), is all zero, and flagged empty for an EMPTY box. A ray leaves a box with one
+// lookup: every ray marches the same colour, bit for bit, as it did while the cache filled, as it
+// did from the full cache before the boxes grew, and as it does when it leaves each CLEAR brick
+// alone, in fewer lookups than both.
 TEST(Cache, TableBoxesNameZeroOrEmptyBricksAndCutLookupsNotColours) {
   std::mt19937 rng(6);
   for (const char* scene : {"perlin", "fbm"}) {

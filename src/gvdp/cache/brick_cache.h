@@ -111,7 +111,7 @@ class BrickCache {
   void growTableBoxes() {
     if (frame_ <= 1) return;
     CacheView last = view();
-    last.listedKeys = listedKeys_[(frame_ + 1) & 1].data();
+    last.listedKeys = listedKeys_[(frame_ + 1) % BOX_LISTS].data();
     ops_.growTableBoxes(last, timeline_);
   }
   void deferTableBoxes() { deferTableBoxes_ = true; }
@@ -142,7 +142,7 @@ class BrickCache {
     v.freeSlots = freeSlots_;
     v.requests = requests_.data();
     v.requestCapacity = static_cast<uint32_t>(requests_.size());
-    v.listedKeys = listedKeys_[frame_ & 1].data();  // this frame's; the last frame's: the other
+    v.listedKeys = listedKeys_[frame_ % BOX_LISTS].data();  // this frame's; the other: the last's
     v.listCapacity = BOX_LIST_CAPACITY;
     v.counters = counters_.data();
     v.frame = frame_;
@@ -197,7 +197,7 @@ class BrickCache {
                    {"timestamps", bytesOf(timestamps_)},
                    {Ops::LRU_NAME, ops_.lruBytes()},
                    {"request_queue", bytesOf(requests_)},
-                   {"box_lists", bytesOf(listedKeys_[0]) + bytesOf(listedKeys_[1])}};
+                   {"box_lists", BOX_LISTS * bytesOf(listedKeys_[0])}};
     if (rayCosts_.size()) m.push_back({"ray_costs", bytesOf(rayCosts_)});  // render --cost-map
     return m;
   }
@@ -231,7 +231,7 @@ class BrickCache {
   Clipmap clipmap_{};
   Buffer<uint32_t> entries_, timestamps_, counters_, rayCosts_;
   bool deferTableBoxes_ = false;
-  Buffer<BrickKey> inverse_, requests_, listedKeys_[2];  // this frame's list and the last's
+  Buffer<BrickKey> inverse_, requests_, listedKeys_[BOX_LISTS];
   Buffer<Rgba8> texels_;
   Buffer<uint64_t> occupancy_;
   Ops ops_;

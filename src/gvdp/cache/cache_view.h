@@ -95,6 +95,7 @@ enum RayCostWord : int { RAY_COST_LOOKUPS, RAY_COST_SAMPLES, RAY_COST_STOPS, RAY
 // the box they have (a frame from a cold cache publishes more: perlin's first frame at 300x200,
 // 235 000 EMPTY bricks; later ones 8 000).
 constexpr uint32_t BOX_LIST_CAPACITY = 1u << 18;
+constexpr uint32_t BOX_LISTS = 2;  // this frame's list and the last's, used in turn (frame % 2)
 
 struct CacheView {
   Clipmap clipmap;

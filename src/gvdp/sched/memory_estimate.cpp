@@ -31,7 +31,7 @@ MemoryReport cacheItems(const SchedulerOptions& o, const FrameSetup& f) {
   if (o.backend == Backend::Cuda) lru += lruTileCount(static_cast<uint32_t>(k)) * sizeof(uint64_t);
   m.push_back({"lru_order", lru});
   m.push_back({"request_queue", pixels * sizeof(BrickKey)});
-  m.push_back({"box_lists", 2 * BOX_LIST_CAPACITY * sizeof(BrickKey)});
+  m.push_back({"box_lists", BOX_LISTS * BOX_LIST_CAPACITY * sizeof(BrickKey)});
   return m;
 }
 
