@@ -351,12 +351,50 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
 // producer's bound does not clear or that is not MISSING (claimed, produced or marked already:
 // one CAS each, so a brick in production keeps its state and its claimant loses nothing). A ray
 // that meets a missing brick under one skips it unproduced (cached_access.h).
+// The largest reach code whose reach is at most r bricks.
+GVDP_HD GVDP_INLINE int emptyReachCodeAtMost(int r) {
+  int c = MAX_EMPTY_REACH_CODE;
+  while (c > 0 && emptyReachOfCode(c) > r) --c;
+  return c;
+}
+
+// The bricks of an EMPTY brick's box within BOX_MEMBER_REACH of it, each MISSING one marked EMPTY
+// (one CAS each, so a claimed or known brick keeps its state) with the part of the box its codes
+// can name from it: a ray that meets one from a side the brick's own rays did not skips it
+// unproduced.
+constexpr int BOX_MEMBER_REACH = 3;
+
+template <class Scope>
+GVDP_HD GVDP_INLINE void markBoxMembers(const Scope& group, const CacheView& cache,
+                                        const BrickKey& key, uint32_t entry) {
+  EmptyReach r = emptyReach(entry);
+  auto lim = [](int v) { return v < BOX_MEMBER_REACH ? v : BOX_MEMBER_REACH; };
+  Vec3i lo{-lim(r.below.x), -lim(r.below.y), -lim(r.below.z)};
+  Vec3i hi{lim(r.above.x), lim(r.above.y), lim(r.above.z)};
+  Vec3i n{hi.x - lo.x + 1, hi.y - lo.y + 1, hi.z - lo.z + 1};
+  int count = n.x * n.y * n.z;
+  if (count <= 1) return;
+  for (int i = group.rank(); i < count; i += group.size()) {
+    Vec3i o{lo.x + i % n.x, lo.y + i / n.x % n.y, lo.z + i / (n.x * n.y)};
+    if (o.x == 0 && o.y == 0 && o.z == 0) continue;
+    uint32_t index = cache.clipmap.windowEntry(key.level, key.brick + o);
+    if (index == Clipmap::NOT_IN_WINDOW) continue;
+    EmptyReachCodes c{{emptyReachCodeAtMost(r.below.x + o.x), emptyReachCodeAtMost(r.below.y + o.y),
+                       emptyReachCodeAtMost(r.below.z + o.z), emptyReachCodeAtMost(r.above.x - o.x),
+                       emptyReachCodeAtMost(r.above.y - o.y),
+                       emptyReachCodeAtMost(r.above.z - o.z)}};
+    if (loadRelaxed32(&cache.entries[index]) == ENTRY_MISSING)
+      atomicCas32(&cache.entries[index], ENTRY_MISSING, emptyEntry(c));
+  }
+}
+
 template <class Scope, class P>
 GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, const CacheView& cache,
                                       BrickKey key) {
   uint32_t index = Clipmap::NOT_IN_WINDOW;  // of an ancestor
   growEmptyBoxes(group, producer, key, cache.clipmap, [&](const BrickKey& k, uint32_t entry) {
     uint32_t marked = 1u;
+    if (index == Clipmap::NOT_IN_WINDOW) markBoxMembers(group, cache, k, entry);
     if (group.rank() == 0) {
       if (index == Clipmap::NOT_IN_WINDOW)
         publishBrick(cache, k, entry);
