@@ -422,6 +422,88 @@ TEST(Cache, EmptyBoxesNameEmptyBricks) {
   }
 }
 
+// An empty brick's commit marks the MISSING bricks of its box within BOX_MEMBER_REACH of it EMPTY
+// (produce.h: markBoxMembers), each with a box inside the brick's that names empty bricks only
+// (corners and a brick inside evaluated sample by sample); a brick claimed before keeps its
+// state, and the bricks just past the box or the reach stay MISSING. COUNTER_MARKED counts them.
+TEST(Cache, EmptyBricksMarkTheMembersOfTheirBoxEmpty) {
+  std::mt19937 rng(7);
+  for (const char* name : {"perlin", "fbm", "forest", "random-spheres"}) {
+    const SceneInfo& info = findScene(name);
+    FrameSetup f = makeFrame(info.start, info.world.voxelSize0(), 64, 40, 5, 0);
+    int boxes = 0, marked = 0, clamped = 0;
+    for (int i = 0; i < 400 && boxes < 12; ++i) {
+      BrickCacheCpu cache(64);
+      cache.beginFrame(f);
+      CacheView v = cache.view();
+      int level = static_cast<int>(rng() % static_cast<unsigned>(f.lod.levels));
+      Vec3i eye = v.clipmap.eyeBrick(level);
+      auto near = [&] { return static_cast<int>(rng() % 9u) - 4; };
+      BrickKey key{eye + Vec3i{near(), near(), near()}, level};
+      if (v.clipmap.windowEntry(level, key.brick) == Clipmap::NOT_IN_WINDOW) continue;
+      bool empty = brickBoundedEmpty(info.world, key);
+      for (int s = 0; s < BRICK_SAMPLE_COUNT && !empty; ++s)
+        if (!produceBrickSample(info.world, key, s).empty) break;
+        else if (s + 1 == BRICK_SAMPLE_COUNT) empty = true;
+      if (!empty) continue;
+      uint32_t own = 0;
+      growEmptyBoxes(ThreadScope{}, info.world, key, v.clipmap, [&](const BrickKey&, uint32_t e) {
+        own = e;
+        return false;
+      });
+      EmptyReach r = emptyReach(own);
+      auto lim = [](int reach) { return std::min(reach, BOX_MEMBER_REACH); };
+      Vec3i lo{-lim(r.below.x), -lim(r.below.y), -lim(r.below.z)};
+      Vec3i hi{lim(r.above.x), lim(r.above.y), lim(r.above.z)};
+      if (lo == Vec3i{0, 0, 0} && hi == Vec3i{0, 0, 0}) continue;
+      ++boxes;
+      clamped += !(hi == r.above) || !(lo == Vec3i{-r.below.x, -r.below.y, -r.below.z});
+      Vec3i claimed = hi.x != 0 ? Vec3i{hi.x, 0, 0} : hi.y != 0 ? Vec3i{0, hi.y, 0}
+                    : hi.z != 0 ? Vec3i{0, 0, hi.z}
+                                : lo;
+      auto entryAt = [&](Vec3i o) -> uint32_t* {
+        uint32_t index = v.clipmap.windowEntry(level, key.brick + o);
+        return index == Clipmap::NOT_IN_WINDOW ? nullptr : &v.entries[index];
+      };
+      if (uint32_t* e = entryAt(claimed)) *e = ENTRY_IN_PRODUCTION;
+      uint32_t before = v.counters[COUNTER_MARKED];
+      publishEmpty(ThreadScope{}, info.world, v, key);
+      ASSERT_EQ(cache.entries()[v.clipmap.entryIndex(level, key.brick)], own) << name;
+      int here = 0;
+      for (int z = lo.z - 1; z <= hi.z + 1; ++z)
+        for (int y = lo.y - 1; y <= hi.y + 1; ++y)
+          for (int x = lo.x - 1; x <= hi.x + 1; ++x) {
+            Vec3i o{x, y, z};
+            uint32_t* e = entryAt(o);
+            if (e == nullptr || o == Vec3i{0, 0, 0}) continue;
+            bool inside = x >= lo.x && x <= hi.x && y >= lo.y && y <= hi.y && z >= lo.z && z <= hi.z;
+            if (o == claimed) {
+              ASSERT_EQ(*e, ENTRY_IN_PRODUCTION) << name << ": a claimed brick marked";
+            } else if (!inside) {
+              ASSERT_EQ(*e, ENTRY_MISSING) << name << ": a brick past the box or reach marked";
+            } else {
+              ASSERT_TRUE(isEmptyEntry(*e)) << name << ": a member left unmarked";
+              EmptyReach m = emptyReach(*e);
+              ASSERT_TRUE(x - m.below.x >= -r.below.x && x + m.above.x <= r.above.x &&
+                          y - m.below.y >= -r.below.y && y + m.above.y <= r.above.y &&
+                          z - m.below.z >= -r.below.z && z + m.above.z <= r.above.z)
+                  << name << ": a member's box leaves the brick's";
+              ASSERT_EQ(nonEmptyInBox(info.world, {key.brick + o, level}, *e, rng, 1, 7), "")
+                  << name;
+              ++here;
+            }
+          }
+      EXPECT_EQ(v.counters[COUNTER_MARKED] - before, static_cast<uint32_t>(here)) << name;
+      marked += here;
+    }
+    EXPECT_GE(boxes, 4) << name << ": too few empty boxes with members found";
+    EXPECT_GT(marked, 0) << name;
+    if (std::string(name) == "perlin") {
+      EXPECT_GT(clamped, 0) << "no box past the members' reach";
+    }
+  }
+}
+
 // N CPU threads as one cooperation scope in lockstep (base/cooperation.h), for the algorithms a
 // GPU warp or block runs as a group: any() meets at barriers. It counts the group's rounds (any).
 struct LockstepShared {

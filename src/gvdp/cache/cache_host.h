@@ -16,6 +16,7 @@ namespace gvdp::detail {
 struct CacheStats {
   uint64_t requested = 0, produced = 0, empty = 0, failed = 0, evicted = 0;
   uint64_t clear = 0;       // bricks produced all zero, without a slot (brick_key.h: ENTRY_CLEAR)
+  uint64_t marked = 0;      // bricks marked EMPTY, unproduced, in a produced brick's box
   uint64_t resident = 0;    // slots holding a brick at the end of the frame
   uint64_t unsampled = 0;   // bricks produced in the frame that no ray sampled (over-production)
   uint64_t prefetched = 0;  // bricks produced in the frame for the next one (pt's prefetch)
@@ -51,6 +52,7 @@ inline CacheStats cacheStatsFrom(const uint32_t* counters, uint64_t resident, ui
   s.empty = counters[COUNTER_EMPTY];
   s.failed = counters[COUNTER_FAILED];
   s.clear = counters[COUNTER_CLEAR];
+  s.marked = counters[COUNTER_MARKED];
   s.evicted = counters[COUNTER_EVICTED];
   s.unsampled = counters[COUNTER_UNSAMPLED];
   s.prefetched = counters[COUNTER_PREFETCHED];

@@ -42,6 +42,7 @@ enum CacheCounter : int {
   COUNTER_LISTED,       // bricks listed for a table box (table_boxes.h), EMPTY and CLEAR
   COUNTER_LISTED_LAST,  // the last frame's, whose boxes grow in this one (startFrameCounter)
   COUNTER_GROWN_NEXT,   // of those, the next one a GPU warp takes (launchGrowTableBoxes)
+  COUNTER_MARKED,       // bricks marked EMPTY as members of a produced brick's box (produce.h)
   // The march's 64-bit counters (MarchCounter), in a 128-byte line of their own: every warp's
   // march adds to them, and a load of a word in a line under atomics waits behind them (the
   // degraded test's load of COUNTER_FAILED did, on pt's march: ncu, H100).
@@ -49,6 +50,7 @@ enum CacheCounter : int {
   COUNTER_COUNT = COUNTER_MARCH + 2 * MARCH_COUNTER_COUNT
 };
 static_assert(COUNTER_MARCH % 2 == 0, "the march's 64-bit counters must be 8-byte aligned");
+static_assert(COUNTER_MARKED < COUNTER_MARCH, "the cache counters run into the march's");
 
 // A slot's timestamp from its production until a ray samples it is the frame with this bit set;
 // the LRU order ignores the bit, and the frame's end counts and clears it (over-production).

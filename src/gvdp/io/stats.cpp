@@ -57,6 +57,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"bricks_produced", f.cache.produced},
                     {"bricks_empty", f.cache.empty},
                     {"bricks_clear", f.cache.clear},
+                    {"bricks_marked_empty", f.cache.marked},
                     {"bricks_failed", f.cache.failed},
                     {"bricks_unsampled", f.cache.unsampled},
                     {"evictions", f.cache.evicted},

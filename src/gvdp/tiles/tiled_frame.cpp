@@ -135,6 +135,7 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   c.produced += t.cache.produced;
   c.empty += t.cache.empty;
   c.clear += t.cache.clear;
+  c.marked += t.cache.marked;
   c.failed += t.cache.failed;
   c.evicted += t.cache.evicted;
   c.resident = t.cache.resident;  // at the end of the last tile
