@@ -441,11 +441,12 @@ TEST(Cache, EmptyBricksMarkTheMembersOfTheirBoxEmpty) {
       auto near = [&] { return static_cast<int>(rng() % 9u) - 4; };
       BrickKey key{eye + Vec3i{near(), near(), near()}, level};
       if (v.clipmap.windowEntry(level, key.brick) == Clipmap::NOT_IN_WINDOW) continue;
-      bool empty = brickBoundedEmpty(info.world, key);
-      for (int s = 0; s < BRICK_SAMPLE_COUNT && !empty; ++s)
-        if (!produceBrickSample(info.world, key, s).empty) break;
-        else if (s + 1 == BRICK_SAMPLE_COUNT) empty = true;
-      if (!empty) continue;
+      auto flagged = [&] {
+        for (int s = 0; s < BRICK_SAMPLE_COUNT; ++s)
+          if (!produceBrickSample(info.world, key, s).empty) return false;
+        return true;
+      };
+      if (!brickBoundedEmpty(info.world, key) && !flagged()) continue;
       uint32_t own = 0;
       growEmptyBoxes(ThreadScope{}, info.world, key, v.clipmap, [&](const BrickKey&, uint32_t e) {
         own = e;
@@ -458,9 +459,10 @@ TEST(Cache, EmptyBricksMarkTheMembersOfTheirBoxEmpty) {
       if (lo == Vec3i{0, 0, 0} && hi == Vec3i{0, 0, 0}) continue;
       ++boxes;
       clamped += !(hi == r.above) || !(lo == Vec3i{-r.below.x, -r.below.y, -r.below.z});
-      Vec3i claimed = hi.x != 0 ? Vec3i{hi.x, 0, 0} : hi.y != 0 ? Vec3i{0, hi.y, 0}
-                    : hi.z != 0 ? Vec3i{0, 0, hi.z}
-                                : lo;
+      Vec3i claimed = hi.x != 0   ? Vec3i{hi.x, 0, 0}
+                      : hi.y != 0 ? Vec3i{0, hi.y, 0}
+                      : hi.z != 0 ? Vec3i{0, 0, hi.z}
+                                  : lo;
       auto entryAt = [&](Vec3i o) -> uint32_t* {
         uint32_t index = v.clipmap.windowEntry(level, key.brick + o);
         return index == Clipmap::NOT_IN_WINDOW ? nullptr : &v.entries[index];
@@ -476,7 +478,8 @@ TEST(Cache, EmptyBricksMarkTheMembersOfTheirBoxEmpty) {
             Vec3i o{x, y, z};
             uint32_t* e = entryAt(o);
             if (e == nullptr || o == Vec3i{0, 0, 0}) continue;
-            bool inside = x >= lo.x && x <= hi.x && y >= lo.y && y <= hi.y && z >= lo.z && z <= hi.z;
+            bool inside =
+                x >= lo.x && x <= hi.x && y >= lo.y && y <= hi.y && z >= lo.z && z <= hi.z;
             if (o == claimed) {
               ASSERT_EQ(*e, ENTRY_IN_PRODUCTION) << name << ": a claimed brick marked";
             } else if (!inside) {
