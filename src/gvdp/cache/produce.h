@@ -346,11 +346,6 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
   growBoxes(group, ProducerBound<P>{producer}, key, clipmap, publish);
 }
 
-// An empty brick is published EMPTY with the box the group grows for it, then its ancestors are
-// marked EMPTY, each exactly as its own production would have found it, up to the first the
-// producer's bound does not clear or that is not MISSING (claimed, produced or marked already:
-// one CAS each, so a brick in production keeps its state and its claimant loses nothing). A ray
-// that meets a missing brick under one skips it unproduced (cached_access.h).
 // The largest reach code whose reach is at most r bricks.
 GVDP_HD GVDP_INLINE int emptyReachCodeAtMost(int r) {
   int c = MAX_EMPTY_REACH_CODE;
@@ -394,6 +389,12 @@ GVDP_HD GVDP_INLINE void markBoxMembers(const Scope& group, const CacheView& cac
   if (marked != 0u) atomicAdd32(&cache.counters[COUNTER_MARKED], marked);
 }
 
+// An empty brick is published EMPTY with the box the group grows for it, then its ancestors are
+// marked EMPTY, each exactly as its own production would have found it, up to the first the
+// producer's bound does not clear or that is not MISSING (claimed, produced or marked already:
+// one CAS each, so a brick in production keeps its state and its claimant loses nothing). A ray
+// that meets a missing brick under one skips it unproduced (cached_access.h). Before the brick's
+// own entry, the members of its box are marked (markBoxMembers).
 template <class Scope, class P>
 GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, const CacheView& cache,
                                       BrickKey key) {

@@ -1,6 +1,7 @@
 // stats.json of a render: {"scene", ..., "memory":{structure: bytes},
 // "frames":[{"index","ms","passes","bricks_requested","bricks_produced","bricks_empty",
-// "bricks_clear","bricks_marked_empty","bricks_failed","evictions","pool_occupancy","unfinished_pixels","degraded"},
+// "bricks_clear","bricks_marked_empty","bricks_failed","evictions","pool_occupancy",
+// "unfinished_pixels","degraded"},
 // ...]}; with ray costs (render --cost-map, one summary per frame) each frame also has
 // "ray_costs":{"lookups":
 // {"mean","p50","p99","p999","max","max_pixel":[x,y]},"samples":{...},"stops":{...}}.
