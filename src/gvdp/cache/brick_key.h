@@ -77,6 +77,13 @@ GVDP_HD GVDP_INLINE EmptyReach emptyReach(uint32_t entry) {
   return {{r(0), r(1), r(2)}, {r(3), r(4), r(5)}};
 }
 
+// The largest box the codes can name inside `box` (emptyReach's inverse, each reach rounded down).
+GVDP_HD GVDP_INLINE EmptyReachCodes codesWithin(const EmptyReach& box) {
+  auto c = [](int reach) { return emptyReachCodeAtMost(reach); };
+  return {{c(box.below.x), c(box.below.y), c(box.below.z), c(box.above.x), c(box.above.y),
+           c(box.above.z)}};
+}
+
 GVDP_HD GVDP_INLINE bool isSlot(uint32_t entry) {
   return entry < MAX_SLOTS;
 }

@@ -346,13 +346,6 @@ GVDP_HD GVDP_INLINE void growEmptyBoxes(const Scope& group, const P& producer, B
   growBoxes(group, ProducerBound<P>{producer}, key, clipmap, publish);
 }
 
-// The largest reach code whose reach is at most r bricks.
-GVDP_HD GVDP_INLINE int emptyReachCodeAtMost(int r) {
-  int c = MAX_EMPTY_REACH_CODE;
-  while (c > 0 && emptyReachOfCode(c) > r) --c;
-  return c;
-}
-
 // The box's members: the bricks of an EMPTY brick's box within BOX_MEMBER_REACH of it along each
 // axis, each MISSING one marked EMPTY (one CAS each, so a claimed, produced or marked brick keeps
 // its state) with the largest part of the box its own codes name. The bound cleared them with
@@ -378,12 +371,9 @@ GVDP_HD GVDP_INLINE void markBoxMembers(const Scope& group, const CacheView& cac
     if (o.x == 0 && o.y == 0 && o.z == 0) continue;
     uint32_t index = cache.clipmap.windowEntry(key.level, key.brick + o);
     if (index == Clipmap::NOT_IN_WINDOW) continue;
-    EmptyReachCodes c{{emptyReachCodeAtMost(r.below.x + o.x), emptyReachCodeAtMost(r.below.y + o.y),
-                       emptyReachCodeAtMost(r.below.z + o.z), emptyReachCodeAtMost(r.above.x - o.x),
-                       emptyReachCodeAtMost(r.above.y - o.y),
-                       emptyReachCodeAtMost(r.above.z - o.z)}};
+    uint32_t member = emptyEntry(codesWithin({r.below + o, r.above - o}));
     if (loadRelaxed32(&cache.entries[index]) == ENTRY_MISSING &&
-        atomicCas32(&cache.entries[index], ENTRY_MISSING, emptyEntry(c)) == ENTRY_MISSING)
+        atomicCas32(&cache.entries[index], ENTRY_MISSING, member) == ENTRY_MISSING)
       ++marked;
   }
   if (marked != 0u) atomicAdd32(&cache.counters[COUNTER_MARKED], marked);

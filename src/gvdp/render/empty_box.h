@@ -19,6 +19,13 @@ GVDP_HD GVDP_INLINE int emptyReachOfCode(int code) {
   return code < 4 ? code : (2 | (code & 1)) << ((code >> 1) - 1);
 }
 
+// The largest code whose reach is at most r bricks (emptyReachOfCode's inverse, rounded down).
+GVDP_HD GVDP_INLINE int emptyReachCodeAtMost(int r) {
+  int c = MAX_EMPTY_REACH_CODE;
+  while (c > 0 && emptyReachOfCode(c) > r) --c;
+  return c;
+}
+
 // The reach through face f of the box named by `codes`.
 GVDP_HD GVDP_INLINE int emptyReachThrough(uint32_t codes, int face) {
   return emptyReachOfCode(static_cast<int>(codes >> (4 * face)) & MAX_EMPTY_REACH_CODE);
