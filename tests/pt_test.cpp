@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <numeric>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "gvdp/base/parallel.h"
@@ -73,14 +74,15 @@ void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, in
   EXPECT_EQ(claims[0], 0u);
   EXPECT_EQ(unsampled[0], 0u) << "without lookahead every produced brick is sampled";
   // How many a lookahead claims depends on the workers' timing: it claims only while no production
-  // task waits unclaimed (lookaheadBricks, below), so a longer one is not bound to claim more.
+  // task waits unclaimed (lookaheadPlan, below), so a longer one is not bound to claim more.
   EXPECT_GT(claims[1], 0u);
   EXPECT_GT(claims[2], 0u);
   EXPECT_GT(claims[3], 0u);
 }
 
 // Outside the frame's tail a stopped ray looks ahead only while no production task waits
-// unclaimed (the tasks ring's `ready`); in the tail, its tail's length whatever the queue.
+// unclaimed (the tasks ring's `ready`), with coarser stand-ins; in the tail, its tail's length
+// whatever the queue, passing the bricks that are not resident.
 TEST(PtLookahead, NoneWhileProductionTasksWaitOutsideTheTail) {
   std::vector<uint32_t> counters(PtLayout::COUNTERS, 0);
   PtContext ctx{};
@@ -90,13 +92,17 @@ TEST(PtLookahead, NoneWhileProductionTasksWaitOutsideTheTail) {
   ctx.tailLookahead = 8;
   ctx.tailRays = 100;
   *ctx.counter(PT_LIVE_RAYS) = 1000;
-  EXPECT_EQ(lookaheadBricks(ctx), 2u);
+  auto plan = [&] {
+    LookaheadPlan p = lookaheadPlan(ctx);
+    return std::pair{p.bricks, p.standIns};
+  };
+  EXPECT_EQ(plan(), std::pair(2u, true));
   *ctx.counter(PT_TASK_READY) = 3;
-  EXPECT_EQ(lookaheadBricks(ctx), 0u) << "tasks wait: no worker is free for more claims";
+  EXPECT_EQ(plan(), std::pair(0u, true)) << "tasks wait: no worker is free for more claims";
   *ctx.counter(PT_LIVE_RAYS) = 100;
-  EXPECT_EQ(lookaheadBricks(ctx), 8u) << "the frame's tail";
+  EXPECT_EQ(plan(), std::pair(8u, false)) << "the frame's tail";
   *ctx.counter(PT_TASK_READY) = 0;
-  EXPECT_EQ(lookaheadBricks(ctx), 8u);
+  EXPECT_EQ(plan(), std::pair(8u, false));
 }
 
 TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {

@@ -88,8 +88,9 @@ struct SchedulerOptions {
 };
 
 // pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE = 256 live: pt_body.h,
-// lookaheadBricks): at least `tailLookahead` bricks, unless the lookahead is off. There the last
-// chains of productions are what is left of the frame. On an H100 (25 pt cells, BENCHMARKS.md,
+// lookaheadPlan, which there also passes the bricks not resident): at least `tailLookahead`
+// bricks, unless the lookahead is off. There the last chains of productions are what is left of
+// the frame. On an H100 (25 pt cells, BENCHMARKS.md,
 // session 23), 8 bricks once one ray in 256 is live gave FPS x1.046, random-spheres' walkthrough
 // frame-12 idle 12% -> 6-8%, over-production at most 9.4% (fbm spinning, 8.1% without); once one
 // ray in 32 is live (session 14's tail), fbm spinning over-produced 11.5-16.6%, over the 10%

@@ -406,11 +406,25 @@ GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uin
 // spin) the worker was 77% of its stall samples waiting for instructions (ncu, random-spheres
 // forward frame 17, H100). Off under a backlog: 25 pt cells FPS x1.039, 1% lows x1.100; and while
 // productions are open: x1.045, x1.043 (BENCHMARKS.md, sessions 27 and 28).
-GVDP_HD GVDP_INLINE uint32_t lookaheadBricks(const PtContext& ctx) {
-  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return ctx.tailLookahead;
-  return loadRelaxed32(ctx.tasks.ready) == 0 && loadRelaxed32(ctx.counter(PT_OPEN)) == 0
-             ? ctx.lookahead
-             : 0u;
+//
+// In the tail the lookahead also passes the bricks that are not resident instead of letting a
+// coarser ancestor stand in: the last rays graze silhouettes, where a coarse ancestor is opaque
+// and the ray at its own level passes beside the matter, so a stand-in ended the lookahead where
+// the ray went on, to stop again on the next brick (the chains along silhouettes, session 48).
+// H200, 25 pt cells, one binary with and without, 2 and 3 rounds: FPS x1.001 / x1.010, 1% lows
+// x0.986 / x1.008, every random-spheres cell +2-5%, its walkthrough frame 12 5.2 -> 5.0 ms
+// (BENCHMARKS.md, session 54).
+struct LookaheadPlan {
+  uint32_t bricks;
+  bool standIns;
+};
+
+GVDP_HD GVDP_INLINE LookaheadPlan lookaheadPlan(const PtContext& ctx) {
+  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return {ctx.tailLookahead, false};
+  return {loadRelaxed32(ctx.tasks.ready) == 0 && loadRelaxed32(ctx.counter(PT_OPEN)) == 0
+              ? ctx.lookahead
+              : 0u,
+          true};
 }
 
 struct ParkOne {
@@ -464,9 +478,10 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
     access.onMiss.missed = false;
     noteRayStop(ctx.cache, static_cast<int>(p));
     if (again && park.leads(access.stopEntry)) {
-      uint32_t bricks = lookaheadBricks(ctx);
+      LookaheadPlan plan = lookaheadPlan(ctx);
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
-                                     StartAhead::lookahead(ctx, bricks), bricks);
+                                     StartAhead::lookahead(ctx, plan.bricks), plan.bricks,
+                                     plan.standIns);
     }
     live = !park(ctx, p, access.stopEntry);
     again = true;
