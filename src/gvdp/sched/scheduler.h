@@ -88,16 +88,15 @@ struct SchedulerOptions {
 };
 
 // pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE = 256 live: pt_body.h,
-// lookaheadPlan, which there also passes the bricks not resident): at least `tailLookahead`
-// bricks, unless the lookahead is off. There the last chains of productions are what is left of
-// the frame. On an H100 (25 pt cells, BENCHMARKS.md,
-// session 23), 8 bricks once one ray in 256 is live gave FPS x1.046, random-spheres' walkthrough
-// frame-12 idle 12% -> 6-8%, over-production at most 9.4% (fbm spinning, 8.1% without); once one
-// ray in 32 is live (session 14's tail), fbm spinning over-produced 11.5-16.6%, over the 10%
-// issue 14 allows; 4 to 6 bricks at one ray in 32 to 256 gave less (FPS x1.025-1.043). 16 by
-// default since session 41 (H200, 25 pt cells against 8, 2 + 4 rounds): 1% lows x1.014 /
-// x1.017, FPS x1.004 / x1.003, random-spheres' frame-12 idle 6.2-7.9% -> 3.5-5.9%, fbm
-// spinning's over-production 5.4-5.8% -> 8.1-8.3%; 32 over-produced 12.6% there.
+// lookaheadPlan, which there also passes the bricks not resident): at least `tailLookahead` bricks,
+// unless the lookahead is off. There the last chains of productions are what is left of the frame.
+// On an H100 (25 pt cells, BENCHMARKS.md, session 23), 8 bricks once one ray in 256 is live gave
+// FPS x1.046, random-spheres' walkthrough frame-12 idle 12% -> 6-8%, over-production at most 9.4%
+// (fbm spinning, 8.1% without); once one ray in 32 is live (session 14's tail), fbm spinning
+// over-produced 11.5-16.6%, over the 10% issue 14 allows; 4 to 6 bricks at one ray in 32 to 256
+// gave less (FPS x1.025-1.043). 16 by default since session 41 (H200, 25 pt cells against 8, 2 + 4
+// rounds): 1% lows x1.014 / x1.017, FPS x1.004 / x1.003, random-spheres' frame-12 idle 6.2-7.9% ->
+// 3.5-5.9%, fbm spinning's over-production 5.4-5.8% -> 8.1-8.3%; 32 over-produced 12.6% there.
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
 }
