@@ -828,6 +828,43 @@ void expectSameMarches(const char* scene, A makeA, B makeB, MarchB marchB = {},
 // A brick produced with every sample zero but not flagged empty is published CLEAR: no slot taken,
 // nothing written; one with a nonzero sample gets a slot and its cells. Every ray of a frame
 // marches the same colour from the full cache as it did while the cache filled.
+// A brick that is not resident stands in by its nearest shown ancestor (a slot or CLEAR), and
+// only within the levels asked: the lookahead's prediction of where a ray becomes opaque
+// (cache/lookahead.h), which pt's prefetch trusts one level up only.
+TEST(Cache, StandInsAreTheNearestShownAncestorWithinTheLevelsAsked) {
+  BrickCacheCpu cache(1000);
+  FrameSetup f = frameAt(findScene("perlin").start.position, 0);
+  cache.beginFrame(f);
+  CacheView v = cache.view();
+  CachedAccess<BrickPool> access{v, cache.pool(), f.lod};
+  const Clipmap& m = v.clipmap;
+  const Vec3i brick = m.eyeBrick(0) - m.globalBrick(0, {0, 0, 0});  // local, level 0
+  const Vec3i parent = halfFloor(brick), grandparent = halfFloor(parent);
+  auto show = [&](int level, Vec3i local) {
+    uint32_t i = m.windowEntryOfLocal(level, local);
+    ASSERT_NE(i, Clipmap::NOT_IN_WINDOW);
+    v.entries[i] = ENTRY_CLEAR;
+  };
+  auto standInLevel = [&](int levels) {
+    BrickLookup b = access.standIn(0, brick, levels);
+    return b.level;
+  };
+  EXPECT_EQ(access.standIn(0, brick).state, BrickState::Empty) << "nothing shown: passed";
+  show(2, grandparent);
+  BrickLookup any = access.standIn(0, brick);
+  EXPECT_EQ(any.level, 2);
+  EXPECT_TRUE(any.brick == grandparent);
+  EXPECT_EQ(standInLevel(STAND_INS_ANY), 2);
+  EXPECT_EQ(standInLevel(2), 2);
+  EXPECT_EQ(standInLevel(1), 0) << "the grandparent is two levels up";
+  EXPECT_EQ(access.standIn(0, brick, 1).state, BrickState::Empty);
+  EXPECT_EQ(standInLevel(0), 0);
+  show(1, parent);
+  EXPECT_EQ(standInLevel(1), 1);
+  EXPECT_EQ(standInLevel(STAND_INS_ANY), 1) << "the nearest";
+  EXPECT_EQ(standInLevel(0), 0);
+}
+
 TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
   const SceneInfo& info = findScene("perlin");
   BrickCacheCpu cache(30000);

@@ -94,15 +94,16 @@ TEST(PtLookahead, NoneWhileProductionTasksWaitOutsideTheTail) {
   *ctx.counter(PT_LIVE_RAYS) = 1000;
   auto plan = [&] {
     LookaheadPlan p = lookaheadPlan(ctx);
-    return std::pair{p.bricks, p.standIns};
+    return std::pair{p.bricks, p.standInLevels};
   };
-  EXPECT_EQ(plan(), std::pair(2u, true));
+  EXPECT_EQ(plan(), std::pair(2u, STAND_INS_ANY));
   *ctx.counter(PT_TASK_READY) = 3;
-  EXPECT_EQ(plan(), std::pair(0u, true)) << "tasks wait: no worker is free for more claims";
+  EXPECT_EQ(plan(), std::pair(0u, STAND_INS_ANY))
+      << "tasks wait: no worker is free for more claims";
   *ctx.counter(PT_LIVE_RAYS) = 100;
-  EXPECT_EQ(plan(), std::pair(8u, false)) << "the frame's tail";
+  EXPECT_EQ(plan(), std::pair(8u, 0)) << "the frame's tail";
   *ctx.counter(PT_TASK_READY) = 0;
-  EXPECT_EQ(plan(), std::pair(8u, false));
+  EXPECT_EQ(plan(), std::pair(8u, 0));
 }
 
 TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {

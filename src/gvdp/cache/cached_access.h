@@ -21,6 +21,8 @@ namespace gvdp::detail {
 
 // Bricks a march claims past its frame's deadline (CachedAccess::lateStandIn).
 constexpr uint32_t MAX_LATE_CLAIMS = 8;
+// A stand-in of any level above the brick (CachedAccess::standIn).
+constexpr int STAND_INS_ANY = 1 << 30;
 
 // Claims a MISSING brick for production: true for the one thread whose CAS won.
 GVDP_HD GVDP_INLINE bool claimBrick(uint32_t* entry) {
@@ -260,11 +262,12 @@ struct CachedAccess {
     return b;
   }
 
-  // The nearest resident coarser ancestor of a brick, or the brick itself as an empty one when
-  // none is: what stands in for a brick that is not resident.
-  GVDP_HD BrickLookup standIn(int level, Vec3i brick) const {
+  // The nearest resident coarser ancestor of a brick, at most `levels` above it, or the brick
+  // itself as an empty one when none is: what stands in for a brick that is not resident.
+  GVDP_HD BrickLookup standIn(int level, Vec3i brick, int levels = STAND_INS_ANY) const {
     Vec3i a = brick;
-    for (int up = level + 1; up < lod.levels; ++up) {
+    const int top = levels < lod.levels - level ? level + 1 + levels : lod.levels;
+    for (int up = level + 1; up < top; ++up) {
       a = halfFloor(a);
       uint32_t* at = entryOf(up, a);
       uint32_t ea = peek(at);

@@ -6,7 +6,8 @@
 // The copy marches as the ray would (render/march.h), with each brick that is not resident
 // standing in by its nearest resident coarser ancestor (CachedAccess::standIn) - which predicts
 // where the ray becomes opaque, and the lookahead ends there - or passed through when none is
-// (or when the caller asks for no stand-ins: pt's frame tail, pt_body.h: lookaheadPlan). It
+// within the levels the caller allows (none in pt's frame tail, pt_body.h: lookaheadPlan; one
+// for pt's prefetch: PT_PREFETCH_STAND_IN_LEVELS). It
 // also ends after the `cap` bricks that follow the one the ray stopped on (resident, empty or
 // not there yet: a bound on its cost, which is a march - without one, a lookahead through
 // resident bricks marched the rest of the ray a second time: pt 1.5x slower on perlin, H100), when
@@ -23,8 +24,10 @@ namespace gvdp::detail {
 template <class Pool, class OnMiss, PoolReads READS>
 struct LookaheadAccess {
   CachedAccess<Pool, OnMiss, READS, false> cached;
-  uint32_t left;         // bricks it may still enter
-  bool standIns = true;  // false: a brick not resident is passed through, as when none stands in
+  uint32_t left;  // bricks it may still enter
+  // How many levels coarser a stand-in may be (0: none, a brick not resident is passed through,
+  // as when none stands in; STAND_INS_ANY: any).
+  int standInLevels = STAND_INS_ANY;
   int lastLevel = -1;
   Vec3i last{0, 0, 0};  // the last one entered (a coarser stand-in is looked up at every sample)
 
@@ -37,8 +40,7 @@ struct LookaheadAccess {
     }
     BrickLookup b = cached.find(level, brick);
     if (b.state != BrickState::Stop) return b;
-    return standIns ? cached.standIn(level, brick)
-                    : BrickLookup{BrickState::Empty, 0u, level, brick};
+    return cached.standIn(level, brick, standInLevels);
   }
 
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) { return cached.sample(b, p); }
@@ -47,9 +49,10 @@ struct LookaheadAccess {
 // Looks ahead of a ray stopped in state s (the state itself is not changed).
 template <PoolReads READS, class Pool, class OnMiss>
 GVDP_HD void lookAhead(const Ray& ray, const Lod& lod, RayState s, const CacheView& cache,
-                       const Pool& pool, OnMiss onMiss, uint32_t cap, bool standIns = true) {
+                       const Pool& pool, OnMiss onMiss, uint32_t cap,
+                       int standInLevels = STAND_INS_ANY) {
   if (cap == 0) return;
-  LookaheadAccess<Pool, OnMiss, READS> access{{cache, pool, lod, onMiss}, cap + 1, standIns};
+  LookaheadAccess<Pool, OnMiss, READS> access{{cache, pool, lod, onMiss}, cap + 1, standInLevels};
   march(ray, lod, s, access);
 }
 

@@ -22,7 +22,8 @@
 // camera stands still (setPrefetch), marches rays of the next frame as the camera's motion predicts
 // it (predictNextFrame), one per prefetch x prefetch pixels (a sixteenth of those after a frame
 // whose prefetch found next to nothing: prefetchStrideAfter), as lookaheads from their start
-// (coarser stand-ins, no waiting, at most MAX_LATE_CLAIMS claims a ray), with ids from a third ring
+// (stand-ins a level above at most, no waiting, at most MAX_LATE_CLAIMS claims a ray), with ids
+// from a third ring
 // (`prefetchIds`), and only while half the frame's free slots are left (the lookahead's claims
 // too): the frame's own productions never fail for them. A prefetched brick is stamped for the next
 // frame (markPrefetched), whose end counts whether a ray used it. Nothing is composited.
@@ -340,9 +341,20 @@ struct StartAhead {
 // 4% slower, 32 +5.5%; 4 claims a ray instead of 8, less in both.
 constexpr uint32_t PT_PREFETCH_BRICKS = 64;
 
+// How many levels above a brick that is not resident a prefetch ray's stand-in may be
+// (cache/lookahead.h). A parent predicts where the ray becomes opaque; a coarser ancestor, all a
+// region new in view has, is opaque far from where the ray at its own level meets the matter: a
+// walk that turns or backs up brings such regions into view, the stand-in ended the prefetch
+// ray there and the next frame's rays stopped on the bricks beyond it. H200, 25 pt cells, one
+// binary: 1 level against any, 2 rounds, FPS x1.015, 1% lows x1.031 (perlin, fbm and forest
+// backward and sideways +2-7%); none (every brick not resident passed): x1.013 in 2 rounds and
+// x1.014 in 3, but aligned-spheres' walkthrough x0.948-0.960, whose light frames then claimed
+// bricks behind its spheres; 2 levels x1.007, 3 x1.009 (BENCHMARKS.md, session 55).
+constexpr int PT_PREFETCH_STAND_IN_LEVELS = 1;
+
 // Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre of its
-// prefetchStride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: coarser
-// stand-ins, no waiting, no timestamp, nothing composited).
+// prefetchStride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: stand-ins at
+// most PT_PREFETCH_STAND_IN_LEVELS above, no waiting, no timestamp, nothing composited).
 template <class Pool>
 GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
   const FrameSetup& f = ctx.prefetchFrame;
@@ -353,7 +365,8 @@ GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) 
   int x = static_cast<int>(column * s + s / 2), y = static_cast<int>(row * s + s / 2);
   Ray ray = f.primaryRay(x < f.width ? x : f.width - 1, y < f.height ? y : f.height - 1);
   lookAhead<PoolReads::Coherent>(ray, f.lod, initialRayState(), ctx.cache, pool,
-                                 StartAhead::prefetch(ctx), PT_PREFETCH_BRICKS);
+                                 StartAhead::prefetch(ctx), PT_PREFETCH_BRICKS,
+                                 PT_PREFETCH_STAND_IN_LEVELS);
 }
 
 // The first of the next PT_BATCH prefetch rays, prefetchItems when none is to be taken: none
@@ -416,15 +429,15 @@ GVDP_HD GVDP_INLINE bool parkRay(const PtContext& ctx, uint32_t pixel, const uin
 // (BENCHMARKS.md, session 54).
 struct LookaheadPlan {
   uint32_t bricks;
-  bool standIns;
+  int standInLevels;  // how far above a brick its stand-in may be (cache/lookahead.h)
 };
 
 GVDP_HD GVDP_INLINE LookaheadPlan lookaheadPlan(const PtContext& ctx) {
-  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return {ctx.tailLookahead, false};
+  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return {ctx.tailLookahead, 0};
   return {loadRelaxed32(ctx.tasks.ready) == 0 && loadRelaxed32(ctx.counter(PT_OPEN)) == 0
               ? ctx.lookahead
               : 0u,
-          true};
+          STAND_INS_ANY};
 }
 
 struct ParkOne {
@@ -481,7 +494,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
       LookaheadPlan plan = lookaheadPlan(ctx);
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
                                      StartAhead::lookahead(ctx, plan.bricks), plan.bricks,
-                                     plan.standIns);
+                                     plan.standInLevels);
     }
     live = !park(ctx, p, access.stopEntry);
     again = true;
