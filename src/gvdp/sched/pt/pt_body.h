@@ -345,11 +345,12 @@ constexpr uint32_t PT_PREFETCH_BRICKS = 64;
 // (cache/lookahead.h). A parent predicts where the ray becomes opaque; a coarser ancestor, all a
 // region new in view has, is opaque far from where the ray at its own level meets the matter: a
 // walk that turns or backs up brings such regions into view, the stand-in ended the prefetch
-// ray there and the next frame's rays stopped on the bricks beyond it. H200, 25 pt cells, one
-// binary: 1 level against any, 2 rounds, FPS x1.015, 1% lows x1.031 (perlin, fbm and forest
-// backward and sideways +2-7%); none (every brick not resident passed): x1.013 in 2 rounds and
-// x1.014 in 3, but aligned-spheres' walkthrough x0.948-0.960, whose light frames then claimed
-// bricks behind its spheres; 2 levels x1.007, 3 x1.009 (BENCHMARKS.md, session 55).
+// ray there and the next frame's rays stopped on the bricks beyond it. H200, 25 pt cells, 1
+// level against any: FPS x1.015 / x1.006 / x1.012, 1% lows x1.031 / x1.004 / x0.996 (2, 3 and 3
+// rounds), the backward and sideways walks of perlin, fbm and forest +2-7% in every run, but
+// aligned-spheres' walkthrough x0.93-0.94 in two of three (its spike frame 11 claims 150-400 more
+// bricks and takes 5-6 ms against 3-4); none at all: x1.013-1.014, aligned-spheres' walkthrough
+// x0.94-0.96 in all three; 2 levels x1.007, 3 x1.009 (BENCHMARKS.md, session 55).
 constexpr int PT_PREFETCH_STAND_IN_LEVELS = 1;
 
 // Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre of its
