@@ -348,8 +348,8 @@ constexpr uint32_t PT_PREFETCH_BRICKS = 64;
 // ray there and the next frame's rays stopped on the bricks beyond it. H200, 25 pt cells, 1
 // level against any: FPS x1.015 / x1.006 / x1.012, 1% lows x1.031 / x1.004 / x0.996 (2, 3 and 3
 // rounds), the backward and sideways walks of perlin, fbm and forest +2-7% in every run, but
-// aligned-spheres' walkthrough x0.93-0.94 in two of three (its spike frame 11 claims 150-400 more
-// bricks and takes 5-6 ms against 3-4); none at all: x1.013-1.014, aligned-spheres' walkthrough
+// aligned-spheres' walkthrough x0.93-0.94 in two of three (its spike frame 11 claims more bricks
+// and takes 3.6-6.1 ms against 3.1-4.5); none at all: x1.013-1.014, aligned-spheres' walkthrough
 // x0.94-0.96 in all three; 2 levels x1.007, 3 x1.009 (BENCHMARKS.md, session 55).
 constexpr int PT_PREFETCH_STAND_IN_LEVELS = 1;
 
