@@ -825,9 +825,6 @@ void expectSameMarches(const char* scene, A makeA, B makeB, MarchB marchB = {},
 
 }  // namespace
 
-// A brick produced with every sample zero but not flagged empty is published CLEAR: no slot taken,
-// nothing written; one with a nonzero sample gets a slot and its cells. Every ray of a frame
-// marches the same colour from the full cache as it did while the cache filled.
 // A brick that is not resident stands in by its nearest shown ancestor (a slot or CLEAR), and
 // only within the levels asked: the lookahead's prediction of where a ray becomes opaque
 // (cache/lookahead.h), which pt's prefetch trusts one level up only.
@@ -865,6 +862,9 @@ TEST(Cache, StandInsAreTheNearestShownAncestorWithinTheLevelsAsked) {
   EXPECT_EQ(standInLevel(0), 0);
 }
 
+// A brick produced with every sample zero but not flagged empty is published CLEAR: no slot taken,
+// nothing written; one with a nonzero sample gets a slot and its cells. Every ray of a frame
+// marches the same colour from the full cache as it did while the cache filled.
 TEST(Cache, AllZeroBricksAreClearAndHoldNoSlot) {
   const SceneInfo& info = findScene("perlin");
   BrickCacheCpu cache(30000);

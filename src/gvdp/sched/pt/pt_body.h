@@ -23,10 +23,10 @@
 // it (predictNextFrame), one per prefetch x prefetch pixels (a sixteenth of those after a frame
 // whose prefetch found next to nothing: prefetchStrideAfter), as lookaheads from their start
 // (stand-ins a level above at most, no waiting, at most MAX_LATE_CLAIMS claims a ray), with ids
-// from a third ring
-// (`prefetchIds`), and only while half the frame's free slots are left (the lookahead's claims
-// too): the frame's own productions never fail for them. A prefetched brick is stamped for the next
-// frame (markPrefetched), whose end counts whether a ray used it. Nothing is composited.
+// from a third ring (`prefetchIds`), and only while half the frame's free slots are left (the
+// lookahead's claims too): the frame's own productions never fail for them. A prefetched brick is
+// stamped for the next frame (markPrefetched), whose end counts whether a ray used it. Nothing is
+// composited.
 //
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
 // so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
