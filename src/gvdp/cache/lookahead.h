@@ -7,14 +7,13 @@
 // standing in by its nearest resident coarser ancestor (CachedAccess::standIn) - which predicts
 // where the ray becomes opaque, and the lookahead ends there - or passed through when none is
 // within the levels the caller allows (none in pt's frame tail, pt_body.h: lookaheadPlan; one
-// for pt's prefetch: PT_PREFETCH_STAND_IN_LEVELS). It
-// also ends after the `cap` bricks that follow the one the ray stopped on (resident, empty or
-// not there yet: a bound on its cost, which is a march - without one, a lookahead through
-// resident bricks marched the rest of the ray a second time: pt 1.5x slower on perlin, H100), when
-// the copy leaves the last level, or when OnMiss::goesOn() says so (pt's prefetch past the frame's
-// rays). A brick it meets MISSING goes to OnMiss (which may decline: no task id left, pt_body.h).
-// It stamps no timestamp: a brick only the lookahead read was not sampled (over-production,
-// cache_view.h).
+// for pt's prefetch: PT_PREFETCH_STAND_IN_LEVELS). It also ends after the `cap` bricks that
+// follow the one the ray stopped on (resident, empty or not there yet: a bound on its cost, which
+// is a march - without one, a lookahead through resident bricks marched the rest of the ray a
+// second time: pt 1.5x slower on perlin, H100), when the copy leaves the last level, or when
+// OnMiss::goesOn() says so (pt's prefetch past the frame's rays). A brick it meets MISSING goes
+// to OnMiss (which may decline: no task id left, pt_body.h). It stamps no timestamp: a brick only
+// the lookahead read was not sampled (over-production, cache_view.h).
 #pragma once
 
 #include "gvdp/cache/cached_access.h"
