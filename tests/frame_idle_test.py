@@ -4,29 +4,13 @@ on values made up here; on two binaries that `gvdp timeline --backend cpu` runs,
 binary with every run counted; bad arguments and a missing binary are a one-line error with exit
 status 2, a run that fails a line naming it and exit status 1.
 Usage: frame_idle_test.py --gvdp PATH"""
-import argparse
 import importlib.util
-import os
 import re
-import subprocess
-import sys
 
-here = os.path.dirname(os.path.abspath(__file__))
-script = os.path.join(here, '..', 'scripts', 'frame_idle.py')
-ap = argparse.ArgumentParser()
-ap.add_argument('--gvdp', required=True)
-gvdp = ap.parse_args().gvdp
-failures = []
+from script_test import ScriptTest
 
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
-
-
-def run(*args):
-    return subprocess.run([sys.executable, script, *args], capture_output=True, text=True)
-
+t = ScriptTest('frame_idle.py')
+check, run, gvdp, script = t.check, t.run, t.gvdp, t.script
 
 spec = importlib.util.spec_from_file_location('frame_idle', script)
 fi = importlib.util.module_from_spec(spec)
@@ -60,7 +44,4 @@ r = run('--backend', 'cpu', '--runs', '1', '--scenes', 'nosuch', f'x={gvdp}')
 check(r.returncode == 1 and 'nosuch x run 1: failed' in r.stdout and "'nosuch'" in r.stdout,
       f'a failing run: exit {r.returncode}, {r.stdout!r}')
 
-for f in failures:
-    print('FAIL:', f)
-print('frame_idle_test:', 'FAILED' if failures else 'passed')
-sys.exit(1 if failures else 0)
+t.finish('frame_idle_test')

@@ -3,29 +3,16 @@
 shares as computed by hand; on a trace `gvdp timeline --backend cpu` writes, the same idle as
 gvdp's own summary line; a trace it cannot read is a one-line error with exit status 2.
 Usage: timeline_tail_test.py --gvdp PATH"""
-import argparse
 import json
 import os
 import re
 import subprocess
-import sys
 import tempfile
 
-here = os.path.dirname(os.path.abspath(__file__))
-script = os.path.join(here, '..', 'scripts', 'timeline_tail.py')
-ap = argparse.ArgumentParser()
-ap.add_argument('--gvdp', required=True)
-gvdp = ap.parse_args().gvdp
-failures = []
+from script_test import ScriptTest
 
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
-
-
-def run(*args):
-    return subprocess.run([sys.executable, script, *args], capture_output=True, text=True)
+t = ScriptTest('timeline_tail.py')
+check, run, gvdp = t.check, t.run, t.gvdp
 
 
 def record(sm, start, end, kind):
@@ -95,7 +82,4 @@ with tempfile.TemporaryDirectory() as d:
         check(r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and path in r.stderr,
               f'{path}: exit {r.returncode}, stderr {r.stderr!r}')
 
-for f in failures:
-    print('FAIL:', f)
-print('timeline_tail_test:', 'FAILED' if failures else 'passed')
-sys.exit(1 if failures else 0)
+t.finish('timeline_tail_test')
