@@ -3,8 +3,9 @@
 binaries, interleaved run by run (binary A, B, ..., then A again), and per scene and binary the
 median and range of the frame's time, its timeline's span and its idle share (SM-time with no
 record open, as gvdp's summary line gives it and scripts/timeline_tail.py splits it). A frame's
-idle varies from run to run by several points (perlin's walkthrough frame 12: 10.7-14.1% over 12
-runs of one binary on an H200, BENCHMARKS.md session 56), so one run says little.
+idle varies from run to run by points (perlin's walkthrough frame 12 on an H200: 10.1-12.2% over
+6 runs of one binary, BENCHMARKS.md session 56), so one run says little. A run that hangs ends
+in GVDP_WATCHDOG_S seconds (60 unless set: base/watchdog.h).
 
 Usage: scripts/frame_idle.py [--runs N] [--scenes A,B] [--frame F] [--movement M]
                              [--scheduler S] [--backend B] [--size WxH] [LABEL=]BIN...
@@ -79,6 +80,7 @@ def main():
     if not scenes:
         fail(f"bad --scenes '{a.scenes}' (expected a comma-separated list)")
     bins = binaries(a.bins)
+    os.environ.setdefault("GVDP_WATCHDOG_S", "60")
     status = 0
     with tempfile.TemporaryDirectory() as d:
         for scene in scenes:
