@@ -193,11 +193,12 @@ TEST(PtWorkerLoop, RunsUntilNoWorkIsLive) {
 
 // A warp's role (ptRole) with producer SMs, share 2 on 132 SMs (spike backlog 528): SMs below
 // ceil(backlog / 2) produce, the others leave tasks to them, until a warp has left the loop or
-// the frame is a spike.
+// the frame is a spike, or while tasks wait with none in flight.
 TEST(PtRole, ProducerSmsFollowTheBacklogUntilASpike) {
   constexpr uint32_t S = 2, SPIKE = 2 * S * 132;
-  auto role = [](uint32_t backlog, uint32_t sm, bool exited = false, bool spike = false) {
-    return ptRole(S, SPIKE, spike, backlog, sm, exited);
+  auto role = [](uint32_t backlog, uint32_t sm, bool exited = false, bool spike = false,
+                 bool unserved = false) {
+    return ptRole(S, SPIKE, spike, backlog, unserved, sm, exited);
   };
   EXPECT_EQ(role(0, 0), PtRole::LeavesTasks);  // no backlog: every SM renders
   EXPECT_EQ(role(5, 2), PtRole::Producer);     // ceil(5 / 2) = 3 SMs produce
@@ -207,7 +208,9 @@ TEST(PtRole, ProducerSmsFollowTheBacklogUntilASpike) {
   EXPECT_EQ(role(5, 0, false, true), PtRole::Any);    // and for the rest of the frame
   EXPECT_EQ(role(5, 3, true), PtRole::Any);           // a warp left: the last takes any task
   EXPECT_EQ(role(5, 0, true), PtRole::Producer);
-  EXPECT_EQ(ptRole(0, 0, false, 5, 0, false), PtRole::Any);  // without producer SMs
+  EXPECT_EQ(role(1, 5, false, false, true), PtRole::Any);  // a task waits, none in flight
+  EXPECT_EQ(role(1, 0, false, false, true), PtRole::Any);
+  EXPECT_EQ(ptRole(0, 0, false, 5, false, 0, false), PtRole::Any);  // without producer SMs
 }
 
 }  // namespace

@@ -450,11 +450,15 @@ struct WarpWorker {
     if (ctx.producerShare == 0) return PtRole::Any;
     const bool spike = loadRelaxed32(ctx.counter(PT_SPIKE)) != 0;
     uint32_t backlog = 0;
+    bool unserved = false;
     if (!spike) {
-      backlog = loadRelaxed32(ctx.tasks.ready) + loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
+      const uint32_t ready = loadRelaxed32(ctx.tasks.ready);
+      const uint32_t inFlight = loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
+      backlog = ready + inFlight;
+      unserved = ready != 0 && inFlight == 0;
       if (backlog >= ctx.spikeBacklog) atomicExch(ctx.counter(PT_SPIKE), 1u);
     }
-    return ptRole(ctx.producerShare, ctx.spikeBacklog, spike, backlog, smId(),
+    return ptRole(ctx.producerShare, ctx.spikeBacklog, spike, backlog, unserved, smId(),
                   loadRelaxed32(ctx.counter(PT_EXITED)) != 0);
   }
   // The samples of `owner`'s production; then, the warp's own, its end.
