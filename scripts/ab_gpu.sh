@@ -55,8 +55,12 @@ for n in names[1:]:
 # over-production (each the upper median of the rounds).
 lows = lambda n: sum(med(c, 'low1_fps') >= 0.75 * med(c, 'avg_fps') for c in data[n].values())
 over = lambda n: max(med(c, 'overproduction') for c in data[n].values())
+# Frame 0 (from an empty cache; gvdp before session 58 wrote no first_ms): the slowest cell's.
+def first(n):
+    cells = [(med(c, 'first_ms'), ' '.join(k)) for k, c in data[n].items() if 'first_ms' in c[0]]
+    return f', first frame at most {max(cells)[0]:.1f} ms ({max(cells)[1]})' if cells else ''
 for n in names:
-    print(f'{n}: 1% low >= 75% of average in {lows(n)} of {len(data[n])} cells, over-production max {100 * over(n):.1f}%')
+    print(f'{n}: 1% low >= 75% of average in {lows(n)} of {len(data[n])} cells, over-production max {100 * over(n):.1f}%{first(n)}')
 print('cell'.ljust(40) + ''.join(f'{n:>30}' for n in names) + '   (floor ms / avg FPS / 1% low % of avg, upper medians of rounds)')
 for k in base:
     row = ' '.join(k).ljust(40)

@@ -63,6 +63,7 @@ BenchCell runCell(const BenchOptions& o, const std::string& scene, Movement m, S
     FrameStats st = renderer->render(poseOf(s, f), image);
     double wall =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (f == 0) c.firstMs = st.ms;
     if (f > o.warmup) prefetchUnused += st.cache.prefetchUnused;
     if (f < o.warmup) continue;
     if (f + 1 < s.frames) prefetched += st.cache.prefetched;
@@ -218,6 +219,7 @@ std::string benchJson(const BenchResults& r) {
                      {"slowest_frame", c.slowestFrame},
                      {"slowest_bricks_x", c.slowestBricks},
                      {"slowest_over_predicted", c.slowestOverPredicted},
+                     {"first_ms", c.firstMs},
                      {"median_wall_ms", c.medianWallMs},
                      {"memory_bytes", c.memoryBytes},
                      {"memory", memory},
@@ -243,7 +245,7 @@ std::string benchCsv(const BenchResults& r) {
   s << "scene,movement,scheduler,avg_fps,low1_fps,median_ms,p99_ms,bricks_per_frame,"
        "unfinished_pixels,speedup_vs_sp,floor_ms,memory_bytes,samples_per_ray,lookups_per_ray,"
        "skips_per_ray,overproduction,within_budget,coarser_pixels,prefetched_per_frame,"
-       "prefetch_used,slowest_frame,slowest_bricks_x,slowest_over_predicted\n";
+       "prefetch_used,slowest_frame,slowest_bricks_x,slowest_over_predicted,first_ms\n";
   for (const BenchCell& c : r.cells)
     s << c.scene << ',' << c.movement << ',' << c.scheduler << ',' << c.avgFps << ',' << c.low1Fps
       << ',' << c.medianMs << ',' << c.p99Ms << ',' << c.bricksPerFrame << ',' << c.unfinishedPixels
@@ -251,7 +253,7 @@ std::string benchCsv(const BenchResults& r) {
       << ',' << c.lookupsPerRay << ',' << c.skipsPerRay << ',' << c.overproduction << ','
       << c.withinBudget << ',' << c.coarserPixels << ',' << c.prefetchedPerFrame << ','
       << c.prefetchUsed << ',' << c.slowestFrame << ',' << c.slowestBricks << ','
-      << c.slowestOverPredicted << '\n';
+      << c.slowestOverPredicted << ',' << c.firstMs << '\n';
   return s.str();
 }
 

@@ -55,6 +55,9 @@ struct BenchCell {
   int slowestFrame = 0;
   double slowestBricks = 0;
   double slowestOverPredicted = 0;
+  // The path's frame 0 (a warm-up frame unless --warmup is 0): from an empty cache, as a render's
+  // or a viewer's first frame (a 370 ms stall of pt's there was hidden by the warm-up).
+  double firstMs = 0;
   MemoryReport memory;
 };
 
