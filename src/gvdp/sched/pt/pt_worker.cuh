@@ -430,7 +430,8 @@ struct WarpWorker {
   // alone, 34 us among 24 warps an SM of other code; session 38). The other warps leave tasks and
   // productions to them, except a warp that has idled to its longest sleep (no SM id below the
   // count may be running: ids are not guaranteed dense) or once a warp has left the loop (a
-  // prefetch's claim may come after the producers left: the last worker left takes any task).
+  // prefetch's claim may come after the producers left: the last worker left takes any task) and
+  // while tasks wait with no production in flight (ptRole's `unserved`: frame 0's eye brick).
   // A frame whose backlog reaches spikeBacklog (twice what every SM producing would serve) is a
   // spike, production-bound: from then on every warp takes any work, as without producer SMs,
   // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
