@@ -515,7 +515,8 @@ constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
 // it), once a warp has left the loop (`exited`: the last worker left takes any task) and while
 // tasks wait with no production in flight (`unserved`: the producer SMs' warps may all be
 // rendering, or absent, since SM ids are not guaranteed dense; frame 0's first task, the eye's
-// brick, waited 78 ms so while every ray of the frame parked on it, BENCHMARKS.md session 57).
+// brick, waited 78 ms while every ray of the frame parked on it, whose wait list then took most
+// of 300 ms to walk: BENCHMARKS.md, sessions 57-58).
 enum class PtRole : uint32_t { Any, Producer, LeavesTasks };
 
 GVDP_HD GVDP_INLINE PtRole ptRole(uint32_t share, uint32_t spikeBacklog, bool spike,
