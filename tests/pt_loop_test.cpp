@@ -196,9 +196,10 @@ TEST(PtWorkerLoop, RunsUntilNoWorkIsLive) {
 // the frame is a spike, or while tasks wait with none in flight.
 TEST(PtRole, ProducerSmsFollowTheBacklogUntilASpike) {
   constexpr uint32_t S = 2, SPIKE = 2 * S * 132;
+  // A backlog of productions in flight (none queued), unless `ready` says otherwise.
   auto role = [](uint32_t backlog, uint32_t sm, bool exited = false, bool spike = false,
-                 bool unserved = false) {
-    return ptRole(S, SPIKE, spike, backlog, unserved, sm, exited);
+                 uint32_t ready = 0) {
+    return ptRole(S, SPIKE, spike, ready, backlog - ready, sm, exited);
   };
   EXPECT_EQ(role(0, 0), PtRole::LeavesTasks);  // no backlog: every SM renders
   EXPECT_EQ(role(5, 2), PtRole::Producer);     // ceil(5 / 2) = 3 SMs produce
@@ -208,9 +209,11 @@ TEST(PtRole, ProducerSmsFollowTheBacklogUntilASpike) {
   EXPECT_EQ(role(5, 0, false, true), PtRole::Any);    // and for the rest of the frame
   EXPECT_EQ(role(5, 3, true), PtRole::Any);           // a warp left: the last takes any task
   EXPECT_EQ(role(5, 0, true), PtRole::Producer);
-  EXPECT_EQ(role(1, 5, false, false, true), PtRole::Any);  // a task waits, none in flight
-  EXPECT_EQ(role(1, 0, false, false, true), PtRole::Any);
-  EXPECT_EQ(ptRole(0, 0, false, 5, false, 0, false), PtRole::Any);  // without producer SMs
+  EXPECT_EQ(role(5, 2, false, false, 3), PtRole::Producer);  // 3 queued and 2 in flight
+  EXPECT_EQ(role(5, 3, false, false, 3), PtRole::LeavesTasks);
+  EXPECT_EQ(role(1, 5, false, false, 1), PtRole::Any);  // a task waits, none in flight
+  EXPECT_EQ(role(1, 0, false, false, 1), PtRole::Any);
+  EXPECT_EQ(ptRole(0, 0, false, 0, 5, 0, false), PtRole::Any);  // without producer SMs
 }
 
 }  // namespace

@@ -431,7 +431,7 @@ struct WarpWorker {
   // productions to them, except a warp that has idled to its longest sleep (no SM id below the
   // count may be running: ids are not guaranteed dense) or once a warp has left the loop (a
   // prefetch's claim may come after the producers left: the last worker left takes any task) and
-  // while tasks wait with no production in flight (ptRole's `unserved`: frame 0's eye brick).
+  // while tasks wait with no production in flight (ptRole: frame 0's eye brick).
   // A frame whose backlog reaches spikeBacklog (twice what every SM producing would serve) is a
   // spike, production-bound: from then on every warp takes any work, as without producer SMs,
   // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
@@ -450,16 +450,13 @@ struct WarpWorker {
   __device__ PtRole roleNow() const {
     if (ctx.producerShare == 0) return PtRole::Any;
     const bool spike = loadRelaxed32(ctx.counter(PT_SPIKE)) != 0;
-    uint32_t backlog = 0;
-    bool unserved = false;
+    uint32_t ready = 0, inFlight = 0;
     if (!spike) {
-      const uint32_t ready = loadRelaxed32(ctx.tasks.ready);
-      const uint32_t inFlight = loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
-      backlog = ready + inFlight;
-      unserved = ready != 0 && inFlight == 0;
-      if (backlog >= ctx.spikeBacklog) atomicExch(ctx.counter(PT_SPIKE), 1u);
+      ready = loadRelaxed32(ctx.tasks.ready);
+      inFlight = loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
+      if (ready + inFlight >= ctx.spikeBacklog) atomicExch(ctx.counter(PT_SPIKE), 1u);
     }
-    return ptRole(ctx.producerShare, ctx.spikeBacklog, spike, backlog, unserved, smId(),
+    return ptRole(ctx.producerShare, ctx.spikeBacklog, spike, ready, inFlight, smId(),
                   loadRelaxed32(ctx.counter(PT_EXITED)) != 0);
   }
   // The samples of `owner`'s production; then, the warp's own, its end.
