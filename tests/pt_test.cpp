@@ -29,6 +29,9 @@ TEST_P(PtCpuTest, MatchesSpBitForBitOnA20FrameWalkthrough) {
   }
   EXPECT_GT(pt.stats[0].launches, 0u);
   EXPECT_GT(pt.stats[0].relaunchedRays, 0u) << "parked rays come back through the ray queue";
+  EXPECT_GT(pt.stats[0].longestWaitList, 0u);
+  EXPECT_LE(pt.stats[0].longestWaitList, pt.stats[0].relaunchedRays);
+  EXPECT_FALSE(pt.stats[0].spike) << "the CPU backend has no producer SMs";
   EXPECT_GT(pt.stats[0].cache.produced + pt.stats[0].cache.empty, 0u);
 }
 

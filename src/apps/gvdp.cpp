@@ -364,9 +364,10 @@ int runRender(const RenderFlags& flags) {
             static_cast<long long>(s.unfinishedPixels), s.degraded ? "  degraded" : "",
             s.cache.coarser ? ("  coarser " + std::to_string(s.cache.coarser)).c_str() : "");
         if (s.launches && o.scheduler.kind == SchedulerKind::Pt)
-          std::printf("           tasks %llu  relaunched rays %llu\n",
+          std::printf("           tasks %llu  relaunched rays %llu  longest wait list %llu%s\n",
                       static_cast<unsigned long long>(s.launches),
-                      static_cast<unsigned long long>(s.relaunchedRays));
+                      static_cast<unsigned long long>(s.relaunchedRays),
+                      static_cast<unsigned long long>(s.longestWaitList), s.spike ? "  spike" : "");
         else if (s.launches || s.launchFailures || s.deferred || s.sweptPixels)
           std::printf("           launches %llu  refused %llu  deferred %llu  swept %lld\n",
                       static_cast<unsigned long long>(s.launches),

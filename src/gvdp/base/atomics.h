@@ -46,6 +46,18 @@ GVDP_HD GVDP_INLINE uint32_t atomicAdd32(uint32_t* p, uint32_t v) {
 #endif
 }
 
+GVDP_HD GVDP_INLINE uint32_t atomicMax32(uint32_t* p, uint32_t v) {
+#if GVDP_IS_GPU_CODE
+  return atomicMax(p, v);
+#else
+  std::atomic_ref<uint32_t> a(*p);
+  uint32_t old = a.load(std::memory_order_relaxed);
+  while (old < v && !a.compare_exchange_weak(old, v, std::memory_order_relaxed)) {
+  }
+  return old;
+#endif
+}
+
 GVDP_HD GVDP_INLINE void atomicAdd64(uint64_t* p, uint64_t v) {
 #if GVDP_IS_GPU_CODE
   atomicAdd(reinterpret_cast<unsigned long long*>(p), static_cast<unsigned long long>(v));

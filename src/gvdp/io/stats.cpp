@@ -72,6 +72,8 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"deferred_productions", f.deferred},
                     {"swept_pixels", f.sweptPixels},
                     {"relaunched_rays", f.relaunchedRays},
+                    {"longest_wait_list", f.longestWaitList},
+                    {"spike", f.spike},
                     {"lookahead_claims", f.lookaheadClaims},
                     {"prefetch_claims", f.prefetchClaims},
                     {"prefetch_rays", f.prefetchRays},

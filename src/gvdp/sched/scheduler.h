@@ -40,6 +40,8 @@ struct FrameStats {
   uint64_t deferred = 0;         // dp: productions left to the sweep (launch depth limit)
   int64_t sweptPixels = 0;       // dp: rays the device-side schedule left to the sp sweep
   uint64_t relaunchedRays = 0;   // pt: parked rays a production queued again
+  uint64_t longestWaitList = 0;  // pt: the most rays one production queued again
+  bool spike = false;            // pt: its backlog outgrew the producer SMs (pt_worker.cuh)
   uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
   uint64_t prefetchClaims = 0;   // pt: bricks claimed for the next frame (idle-time prefetch)
   uint64_t prefetchRays = 0;     // pt: the prefetch's rays marched, of prefetchItems offered

@@ -123,6 +123,8 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   total.deferred += t.deferred;
   total.sweptPixels += t.sweptPixels;
   total.relaunchedRays += t.relaunchedRays;
+  total.longestWaitList = std::max(total.longestWaitList, t.longestWaitList);
+  total.spike = total.spike || t.spike;
   total.lookaheadClaims += t.lookaheadClaims;
   total.prefetchClaims += t.prefetchClaims;
   total.prefetchRays += t.prefetchRays;

@@ -81,6 +81,7 @@ enum PtCounter : int {
   PT_EXITED,         // warps that left the loop (counted with producer SMs only: pt_worker.cuh)
   PT_IN_FLIGHT,      // production tasks taken and not ended (the same)
   PT_SPIKE,          // nonzero once the frame's backlog reached spikeBacklog (the same)
+  PT_LONGEST_LIST,   // the most rays one production queued again (a wait list's length)
   PT_COUNTER_COUNT
 };
 
@@ -613,7 +614,9 @@ GVDP_HD GVDP_INLINE void endTask(const PtContext& ctx, uint32_t id) {
 
 // One worker's single-threaded version of the end of a production task (CPU backend).
 GVDP_HD GVDP_INLINE void finishProductionTask(const PtContext& ctx, uint32_t id) {
-  atomicAdd32(ctx.counter(PT_RELAUNCHED), requeueRays(ctx, closeWaitList(ctx, id)));
+  const uint32_t relaunched = requeueRays(ctx, closeWaitList(ctx, id));
+  atomicAdd32(ctx.counter(PT_RELAUNCHED), relaunched);
+  atomicMax32(ctx.counter(PT_LONGEST_LIST), relaunched);
   endTask(ctx, id);
 }
 

@@ -1,6 +1,7 @@
 // pt's frame statistics from its counters `c` (PtCounter, PT_COUNTER_STRIDE apart) at a frame's
-// end, for both backends: tasks run, rays relaunched, lookahead and prefetch claims, the
-// prefetch's rays of the `prefetchItems` it offered, and any ray left live as unfinished.
+// end, for both backends: tasks run, rays relaunched (in all, and the longest wait list), whether
+// it was a spike (GPU), lookahead and prefetch claims, the prefetch's rays of the `prefetchItems`
+// it offered, and any ray left live as unfinished.
 // Returns what the prefetch did (the next frame's density follows it: prefetchStrideAfter).
 #pragma once
 
@@ -16,6 +17,8 @@ inline PrefetchYield addPtStats(const uint32_t* c, uint32_t prefetchItems, Frame
   PrefetchYield prefetch = prefetchYield(c, prefetchItems);
   stats.launches = uint64_t{counter(PT_PRODUCTIONS)} + counter(PT_RENDER_TASKS);
   stats.relaunchedRays = counter(PT_RELAUNCHED);
+  stats.longestWaitList = counter(PT_LONGEST_LIST);
+  stats.spike = counter(PT_SPIKE) != 0;
   stats.lookaheadClaims = counter(PT_LOOKAHEAD);
   stats.prefetchClaims = prefetch.claims;
   stats.prefetchRays = prefetch.rays;

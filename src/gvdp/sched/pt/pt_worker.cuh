@@ -305,6 +305,7 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
   }
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
+    atomicMax(ctx.counter(PT_LONGEST_LIST), relaunched);
     atomicAdd(ctx.counter(PT_PRODUCTIONS), 1u);
     if (ctx.producerShare != 0) atomicSub(ctx.counter(PT_IN_FLIGHT), 1u);
     endTask(ctx, id);
