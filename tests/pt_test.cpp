@@ -308,6 +308,21 @@ TEST(GpuPt, WithoutProducerSmsMatchesSpBitForBit) {
   }
 }
 
+// A frame from an empty cache is a spike from its start (pt_cuda.cpp: spikeBacklogOf): every
+// warp takes any work, and the stats say so; without producer SMs no frame is one.
+TEST(GpuPt, AFrameFromAnEmptyCacheIsASpike) {
+  GVDP_REQUIRE_GPU();
+  test::EnvRestore restore("GVDP_PT_PRODUCER_SHARE");
+  unsetenv("GVDP_PT_PRODUCER_SHARE");
+  Renders pt = renderRun("perlin", {Backend::Cuda, SchedulerKind::Pt}, 2, 320, 200);
+  EXPECT_TRUE(pt.stats[0].spike);
+  EXPECT_GT(pt.stats[0].longestWaitList, 0u);
+  setenv("GVDP_PT_PRODUCER_SHARE", "0", 1);
+  Renders off = renderRun("perlin", {Backend::Cuda, SchedulerKind::Pt}, 2, 320, 200);
+  for (const FrameStats& s : off.stats) EXPECT_FALSE(s.spike);
+  EXPECT_EQ(pt.images[0].pixels, off.images[0].pixels);
+}
+
 TEST(GpuPt, LookaheadChangesWhatIsProducedNeverTheImage) {
   GVDP_REQUIRE_GPU();
   for (const char* scene : {"perlin", "forest", "random-spheres"})

@@ -78,7 +78,8 @@ class BrickCache {
     clipmap_ = u.clipmap;
     degraded_ = false;
     ++frame_;
-    if (u.fullReset || frame.coldCache) {
+    startedEmpty_ = u.fullReset || frame.coldCache;
+    if (startedEmpty_) {
       if (entries_.size() != clipmap_.entryCount())
         entries_ = Buffer<uint32_t>(clipmap_.entryCount());
       ops_.fillBytes(entries_, 0xff);  // ENTRY_MISSING
@@ -157,6 +158,8 @@ class BrickCache {
   void readCounters(uint32_t* out) const { ops_.read(counters_.data(), out, COUNTER_COUNT); }
   void clearRequests() { ops_.zero(counters_.data() + COUNTER_REQUESTS, 1); }
   const BrickKey* requests() const { return requests_.data(); }
+  // Whether the frame began with every entry MISSING (its first, a cold or a reset clipmap).
+  bool startedEmpty() const { return startedEmpty_; }
   void setDegraded(bool d) { degraded_ = d; }
   bool degraded() const { return degraded_; }
 
@@ -240,6 +243,7 @@ class BrickCache {
   uint32_t frame_ = 0, refills_ = 0;
   int costWidth_ = 0, costHeight_ = 0;  // the frame's, when it records ray costs (else 0)
   uint64_t resident_ = 0;
+  bool startedEmpty_ = false;
   int64_t budgetNs_ = -1;
   bool degraded_ = false;
 };

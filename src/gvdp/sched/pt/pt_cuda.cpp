@@ -14,7 +14,11 @@ namespace gvdp::detail {
 namespace {
 
 // The backlog from which a frame of `share` has no producer SMs: twice the one at which every SM
-// of the device would produce (pt_worker.cuh: roleNow).
+// of the device would produce (pt_worker.cuh: roleNow). A frame from an empty cache is a spike
+// from its start (backlog 0): below the spike, a backlog between the two makes every SM a
+// producer and none render, and perlin's frame 0 (240 000 tasks, most of them EMPTY bricks)
+// hovered there: 64-67 ms in 2 of 3 runs against 34-38 ms once a spike (H200, BENCHMARKS.md
+// session 59). Lowering the backlog for every frame instead cost the 25 cells' FPS 3-8%.
 uint32_t spikeBacklogOf(uint32_t share) {
   return 2 * share * static_cast<uint32_t>(smCount());
 }
@@ -104,7 +108,7 @@ class PtCuda final : public SpFrameCuda {
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
     ctx.producerShare = producerShare_;
-    ctx.spikeBacklog = spikeBacklog_;
+    ctx.spikeBacklog = cache_.startedEmpty() ? 0u : spikeBacklog_;  // (spikeBacklogOf)
     ctx.tiles = tileOrder_.next(f, stream());
     launchPtFrameStart(ctx, layout_, ringsQuiet_, buffers_.counters.data() + 1, stream());
     ringsQuiet_ = false;  // until this frame's end says so

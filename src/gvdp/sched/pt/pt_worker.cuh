@@ -436,7 +436,8 @@ struct WarpWorker {
   // A frame whose backlog reaches spikeBacklog (twice what every SM producing would serve) is a
   // spike, production-bound: from then on every warp takes any work, as without producer SMs,
   // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
-  // forward's 267 000-brick frame: 47 ms, 82 ms with producer SMs throughout, 47 ms so). S = 2
+  // forward's 267 000-brick frame: 47 ms, 82 ms with producer SMs throughout, 47 ms so); so is a
+  // frame from an empty cache, from its start (pt_cuda.cpp: spikeBacklogOf). S = 2
   // on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows x1.028-1.058, floors
   // x0.991-0.993 (session 40); on session 44's code FPS x1.08, 1% lows x1.08-1.10, the default
   // since session 45 (BENCHMARKS.md). With S = 0, helper SMs only (PT_HELPER_SMS).
