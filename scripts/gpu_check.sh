@@ -6,7 +6,9 @@
 #      walkthrough, 20000 bricks), a tiny one (random-spheres backward, 64 bricks: refills and
 #      degraded frames, --tiles off), the large one with --budget-ms 0 ("late": every claim past
 #      the deadline, rays never waiting) and forest backward with 600 bricks ("tiled": frames
-#      rendered as tiles, memcheck and racecheck only). memcheck runs on the default build; initcheck, racecheck and synccheck
+#      rendered as tiles, memcheck and racecheck only) and, for pt, random-spheres forward over
+#      20 frames with GVDP_PT_FAR=8 ("far": its idle frames inside a sphere march a far
+#      prefetch that holds the frame open; memcheck and racecheck only). memcheck runs on the default build; initcheck, racecheck and synccheck
 #      on the nocdp build: with CDP in the binary they instrument no kernel ("CUDA Dynamic
 #      Parallelism is not supported by the selected tool"), and initcheck then reports every
 #      download as uninitialised since it never saw the kernels' writes;
@@ -35,12 +37,12 @@ export GVDP_BIN="$PWD/carry/gvdp"
 status=0
 
 tools=" ${TOOLS:-memcheck initcheck racecheck synccheck} "
-read -ra pool_list <<<"${POOLS:-large tiny late tiled}"
+read -ra pool_list <<<"${POOLS:-large tiny late tiled far}"
 for t in $tools; do
   [[ " memcheck initcheck racecheck synccheck " == *" $t "* ]] || { echo "gpu_check: unknown tool '$t' in TOOLS" >&2 && exit 2; }
 done
 for p in "${pool_list[@]}"; do
-  [[ " large tiny late tiled " == *" $p "* ]] || { echo "gpu_check: unknown pool '$p' in POOLS" >&2 && exit 2; }
+  [[ " large tiny late tiled far " == *" $p "* ]] || { echo "gpu_check: unknown pool '$p' in POOLS" >&2 && exit 2; }
 done
 if [ "${TESTS:-1}" = 0 ]; then
   echo "== tests: skipped (TESTS=0)"
@@ -74,6 +76,7 @@ sanitize() {
   local scene=forest movement=walkthrough args=()
   [ "$pool" = tiny ] && scene=random-spheres movement=backward
   [ "$pool" = tiled ] && movement=backward
+  [ "$pool" = far ] && scene=random-spheres movement=forward
   [ "$sched" != direct ] && args=(--pool-bricks "$(case $pool in tiny) echo 64 ;; tiled) echo 600 ;; *) echo 20000 ;; esac)")
   [ "$pool" = late ] && args+=(--budget-ms 0)
   # The scheduler's own degraded frames (then the cold retries of tiles/tiled_frame.cpp);
@@ -83,10 +86,11 @@ sanitize() {
   args+=("${extra[@]}")
   # pt with its lookahead and prefetch on: the protocol with every kind of claim in it (the second
   # frame prefetches for a third, whose prefetch is as dense as the second's yield asks).
-  local frames=2
+  local frames=2 far=0
   [ "$sched" = pt ] && args+=(--lookahead 4 --prefetch 2) && frames=3
+  [ "$pool" = far ] && frames=20 far=8
   local log=/tmp/sanitize.log
-  GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
+  GVDP_PT_FAR=$far GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
     --backend cuda --scheduler "$sched" --scene "$scene" --movement "$movement" --width 160 \
     --height 100 --frames "$frames" "${args[@]}" --out "/tmp/sanitize_$sched" >"$log" 2>&1
   local rc=$?
@@ -107,14 +111,15 @@ sanitize() {
 }
 
 graph_loop=device
-echo "== compute-sanitizer (160x100, 2 frames, pt 3; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0, tiled: forest backward, 600 bricks)"
+echo "== compute-sanitizer (160x100, 2 frames, pt 3; large pool: forest, tiny: random-spheres backward, late: large with --budget-ms 0, tiled: forest backward, 600 bricks, far: pt's far prefetch, random-spheres forward, 20 frames)"
 : >"$out/sanitizer.log"
 for sched in "${schedulers[@]}"; do
   pools=("${pool_list[@]}")
   [ "$sched" = direct ] && pools=(none)
   for pool in "${pools[@]}"; do
+    [ "$pool" = far ] && [ "$sched" != pt ] && continue
     sanitize memcheck "$sched" "$pool" ./carry/gvdp
-    if [ "$pool" = tiled ]; then
+    if [ "$pool" = tiled ] || [ "$pool" = far ]; then
       [ "$sched" = dp ] && continue
       [ "$sched" = graph ] && graph_loop=host
       sanitize racecheck "$sched" "$pool" ./carry/nocdp/gvdp

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <numeric>
 #include <thread>
@@ -169,6 +170,33 @@ TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
   if (ThreadPool::global().size() > 1) {
     EXPECT_GT(claims, 0u);
   }
+}
+
+// The far prefetch (GVDP_PT_FAR=8, pt_body.h: prefetchPlanAfter): random-spheres' forward walk
+// spends frames inside a sphere, whose rays wait on nothing; their prefetch marches the frames
+// ahead, so the frame where the camera comes out requests fewer bricks. The images stay the same.
+TEST(PtCpu, FarPrefetchChangesWhatIsProducedNeverTheImage) {
+  test::EnvRestore restore("GVDP_PT_FAR");
+  unsetenv("GVDP_PT_FAR");
+  const SchedulerOptions o{Backend::Cpu, SchedulerKind::Pt};
+  Renders near = renderRun("random-spheres", o, 20, 160, 100, Movement::Forward);
+  setenv("GVDP_PT_FAR", "8", 1);
+  Renders far = renderRun("random-spheres", o, 20, 160, 100, Movement::Forward);
+  uint64_t nearMost = 0, farMost = 0;
+  for (int f = 0; f < 20; ++f) {
+    EXPECT_EQ(near.images[f].pixels, far.images[f].pixels) << "frame " << f;
+    EXPECT_EQ(far.stats[f].unfinishedPixels, 0) << "frame " << f;
+    EXPECT_LE(far.stats[f].cache.prefetchUnused, f ? far.stats[f - 1].cache.prefetched : 0u);
+    if (f >= 10) {
+      nearMost = std::max(nearMost, near.stats[f].cache.requested);
+      farMost = std::max(farMost, far.stats[f].cache.requested);
+    }
+  }
+  std::printf(
+      "[ measure ] random-spheres forward pt 160x100, frames 10-19: at most %llu bricks "
+      "requested a frame, %llu with GVDP_PT_FAR=8\n",
+      static_cast<unsigned long long>(nearMost), static_cast<unsigned long long>(farMost));
+  EXPECT_LT(farMost, nearMost);
 }
 
 TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
@@ -351,14 +379,32 @@ TEST(PtPrefetch, NoneForAStillCamera) {
   FrameSetup previous = makeFrame(pose, 0.01f, 320, 200, 8, 4);
   auto items = [&](const CameraPose& p) {
     PtContext ctx{};
-    setPrefetch(ctx, previous, &previous, 4);
+    setPrefetch(ctx, previous, &previous, {4, 1});
     EXPECT_EQ(ctx.prefetchItems, 0u) << "not after the same frame";
-    setPrefetch(ctx, makeFrame(p, 0.01f, 320, 200, 8, 5), &previous, 4);
+    setPrefetch(ctx, makeFrame(p, 0.01f, 320, 200, 8, 5), &previous, {4, 1});
     return ctx.prefetchItems;
   };
   EXPECT_EQ(items(pose), 0u);
   EXPECT_EQ(items(moved), 80u * 50u);
   EXPECT_EQ(items(turned), 80u * 50u);
+}
+
+// The far prefetch's plan: only after an idle frame (no ray waited), sparse after a busy one,
+// dense after a far frame that yielded; without far poses, a budget or a prefetch, the next
+// frame's plan as before.
+TEST(PtPrefetch, FarOnlyAfterAnIdleFrameAndDenseOnlyAfterAFarYield) {
+  auto plan = [](uint32_t far, PrefetchYield y, uint32_t lastPoses) {
+    PrefetchPlan p = prefetchPlanAfter(4, far, y, lastPoses);
+    return std::pair{p.stride, p.poses};
+  };
+  using P = std::pair<uint32_t, uint32_t>;
+  EXPECT_EQ(plan(8, {94000, 0, false}, 1), P(16, 1)) << "a busy frame: the next frame's plan";
+  EXPECT_EQ(plan(0, {94000, 0, true}, 1), P(16, 1)) << "far off";
+  EXPECT_EQ(plan(8, {94000, 30, true}, 1), P(4 * PT_FAR_SPARSE, 8)) << "idle: far, sparse first";
+  EXPECT_EQ(plan(8, {1500, 1, true}, 8), P(4, 8)) << "a far frame that yielded: dense";
+  EXPECT_EQ(plan(8, {1500, 0, true}, 8), P(4 * PT_FAR_SPARSE, 8)) << "one that found nothing";
+  EXPECT_EQ(plan(8, {0, 0, true}, 8), P(4 * PT_FAR_SPARSE, 8)) << "none marched: sparse";
+  EXPECT_EQ(prefetchPlanAfter(0, 8, {1500, 1, true}, 8).stride, 0u) << "no prefetch, no far";
 }
 
 // The prefetch is dense after a frame whose prefetch claimed a brick per PT_PREFETCH_YIELD rays

@@ -150,15 +150,17 @@ GVDP_HD GVDP_INLINE void publishBrick(const CacheView& c, const BrickKey& key, u
   }
 }
 
-// A published brick produced for the next frame (pt's idle-time prefetch): unless a ray of this
-// frame sampled it already, its timestamp becomes the next frame's with both marks (cache_view.h),
-// which the LRU keeps through that frame and whose end counts it as used or not. A CAS: a ray's
-// stamp of this frame, before or after, wins.
-GVDP_HD GVDP_INLINE void markPrefetched(const CacheView& c, const BrickKey& key) {
+// A published brick produced for the next frame (pt's idle-time prefetch), or for the frame
+// `ahead` (a far prefetch's last pose): unless a ray of this frame sampled it already, its
+// timestamp becomes that frame's with both marks (cache_view.h), which the LRU keeps through that
+// frame and whose end counts it as used or not (a ray's stamp before then clears the marks: used).
+// A CAS: a ray's stamp of this frame, before or after, wins.
+GVDP_HD GVDP_INLINE void markPrefetched(const CacheView& c, const BrickKey& key,
+                                        uint32_t ahead = 1) {
   uint32_t e = loadAcquire32(&c.entries[c.clipmap.entryIndex(key.level, key.brick)]);
   if (isSlot(e))
     atomicCas32(&c.timestamps[slotOf(e)], c.frame | TIMESTAMP_UNSAMPLED,
-                (c.frame + 1) | TIMESTAMP_MARKS);
+                (c.frame + ahead) | TIMESTAMP_MARKS);
 }
 
 }  // namespace gvdp::detail

@@ -4,13 +4,14 @@
 // mid-frame refill from the order built before, in two passes over the pool and without a sort:
 //
 // Between a build in frame p and the next, a slot's last-used frame changes only to 0 (its entry
-// reset: resetEntry, a cold cache), to p (a ray sampled it, production published it) or to p + 1
-// (pt's prefetch for the next frame; a ray's stamp of p may follow, cache_ops.h). So a slot still
-// in (0, p) had the same frame at the last build, where it stood in order, and the new order is
+// reset: resetEntry, a cold cache), to p (a ray sampled it, production published it) or above p
+// (pt's prefetch for the next frame, p + 1, or a far prefetch's for a later one; a ray's stamp of
+// p may follow, cache_ops.h). So a slot still in (0, p) had the same frame at the last build,
+// where it stood in order, and the new order is
 //   LRU_UNUSED   the slots at 0, by index
 //   LRU_KEPT     the last order's slots still in (0, p), in that order
 //   LRU_STAMPED  the slots at p, by index
-//   LRU_AHEAD    the slots above p (p + 1), by index.
+//   LRU_AHEAD    the slots above p, by index (a far prefetch's frames not apart).
 // Tests: LruOrder.* (against a sort, over random stamps by these rules, on both backends).
 #pragma once
 

@@ -16,6 +16,10 @@ namespace gvdp::detail {
 inline constexpr uint32_t PT_PRODUCER_SHARE_DEFAULT = 2;
 uint32_t ptProducerShareFromEnvironment();
 
+// pt's far prefetch (pt_body.h: prefetchPlanAfter): the poses GVDP_PT_FAR=N says, 0 (off) unless
+// set. Throws InputError naming any value but an integer 0..PT_FAR_MAX_POSES.
+uint32_t ptFarPosesFromEnvironment();
+
 std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);
 

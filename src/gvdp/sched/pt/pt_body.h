@@ -82,6 +82,7 @@ enum PtCounter : int {
   PT_IN_FLIGHT,      // production tasks taken and not ended (the same)
   PT_SPIKE,          // nonzero once the frame's backlog reached spikeBacklog (the same)
   PT_LONGEST_LIST,   // the most rays one production queued again (a wait list's length)
+  PT_FAR_HOLD,       // 1 while a far prefetch holds the frame open (claimPrefetchItems)
   PT_COUNTER_COUNT
 };
 
@@ -169,6 +170,13 @@ struct PtProductions {
   uint32_t* openCount;  // the bits set (ctx.counter(PT_OPEN)), read before a search
 };
 
+// A predicted frame's camera (a far prefetch's poses: setPrefetch).
+struct PrefetchPose {
+  Vec3f eye;
+  CameraBasis basis;
+};
+constexpr uint32_t PT_FAR_MAX_POSES = 16;
+
 struct PtContext {
   FrameSetup frame;
   CacheView cache;
@@ -194,6 +202,11 @@ struct PtContext {
   PtProductions productions;  // the GPU's (pt_worker.cuh)
   uint32_t producerShare;     // the GPU's producer SMs (pt_worker.cuh: roleNow); 0: none
   uint32_t spikeBacklog;      // the backlog from which a frame has no producer SMs (the same)
+  // The prefetch's predicted frames, each prefetchItems / prefetchPoses rays (a far prefetch:
+  // more than one), their cameras (the next frame's first), and a far prefetch's claims at most.
+  uint32_t prefetchPoses = 1;
+  PrefetchPose poses[PT_FAR_MAX_POSES];
+  uint32_t farClaims = 0;
 
   GVDP_HD uint32_t* counter(PtCounter c) const { return &counters[c * PT_COUNTER_STRIDE]; }
 };
@@ -311,7 +324,8 @@ struct StartAhead {
     return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks, false};
   }
   static GVDP_HD StartAhead prefetch(const PtContext& c) {
-    return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS, true};
+    const bool far = loadRelaxed32(c.counter(PT_FAR_HOLD)) != 0;  // (claimPrefetchItems)
+    return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS, !far};
   }
   // Whether the march may enter another brick (cache/lookahead.h). A prefetch march enters none
   // after the frame's last ray has finished unless the frame's prefetch has claimed a brick: the
@@ -359,12 +373,20 @@ constexpr int PT_PREFETCH_STAND_IN_LEVELS = 1;
 // most PT_PREFETCH_STAND_IN_LEVELS above, no waiting, no timestamp, nothing composited).
 template <class Pool>
 GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
-  const FrameSetup& f = ctx.prefetchFrame;
-  uint32_t rows = ctx.prefetchItems / ctx.prefetchColumns;
+  const uint32_t perPose = ctx.prefetchItems / ctx.prefetchPoses, pose = item / perPose;
+  item %= perPose;
+  FrameSetup f = ctx.prefetchFrame;
+  f.eye = ctx.poses[pose].eye;
+  f.basis = ctx.poses[pose].basis;
+  uint32_t rows = perPose / ctx.prefetchColumns;
   uint32_t column = item % ctx.prefetchColumns, row = item / ctx.prefetchColumns;
   row = static_cast<uint32_t>(uint64_t{row} * ctx.prefetchRowStep % rows);
-  uint32_t s = ctx.prefetchStride;
-  int x = static_cast<int>(column * s + s / 2), y = static_cast<int>(row * s + s / 2);
+  const uint32_t s = ctx.prefetchStride;
+  // A far prefetch's pixel in each s x s moves from frame to frame (idle frames march the same
+  // ground again, one pose on).
+  const uint32_t j = ctx.prefetchPoses > 1 ? static_cast<uint32_t>(f.frameIndex) * 7u + pose : 0u;
+  int x = static_cast<int>(column * s + (s / 2 + j) % s);
+  int y = static_cast<int>(row * s + (s / 2 + 3u * j) % s);
   Ray ray = f.primaryRay(x < f.width ? x : f.width - 1, y < f.height ? y : f.height - 1);
   lookAhead<PoolReads::Coherent>(ray, f.lod, initialRayState(), ctx.cache, pool,
                                  StartAhead::prefetch(ctx), PT_PREFETCH_BRICKS,
@@ -379,17 +401,35 @@ GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) 
 // tasks in most tails without any): pt's floors x0.96, but aligned-spheres' walkthrough 417 ->
 // 364 FPS, its 99th percentile 12 -> 20 ms (the prefetch in frames without production halved);
 // ending the prefetch's marches with the frame's last ray: 381 FPS (H100, BENCHMARKS.md).
-GVDP_HD GVDP_INLINE uint32_t claimPrefetchItems(const PtContext& ctx) {
-  if (ctx.prefetchItems == 0 || loadRelaxed32(ctx.counter(PT_NEXT_PREFETCH)) >= ctx.prefetchItems)
-    return ctx.prefetchItems;
-  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) == 0) return ctx.prefetchItems;
-  uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_PREFETCH), static_cast<uint32_t>(PT_BATCH));
-  return first < ctx.prefetchItems ? first : ctx.prefetchItems;
+// A far prefetch (prefetchPoses > 1) holds the frame open (one unit of its live work, from its
+// start: initialPtCounter) until its last rays are taken, its claims reach farClaims or a ray of
+// the frame waited after all (a relaunch: the frame is not idle); from then on only the next
+// frame's pose is marched, and only while rays are live.
+GVDP_HD GVDP_INLINE void releaseFarHold(const PtContext& ctx) {
+  if (atomicExch32(ctx.counter(PT_FAR_HOLD), 0u) != 0)
+    atomicAdd32(ctx.counter(PT_LIVE_WORK), 0u - 1u);
 }
 
-// After a production task's brick is published: a prefetch task's is stamped for the next frame.
+GVDP_HD GVDP_INLINE uint32_t claimPrefetchItems(const PtContext& ctx) {
+  const uint32_t items = ctx.prefetchItems;
+  if (items == 0 || loadRelaxed32(ctx.counter(PT_NEXT_PREFETCH)) >= items) return items;
+  bool far = loadRelaxed32(ctx.counter(PT_FAR_HOLD)) != 0;
+  if (far && (loadRelaxed32(ctx.counter(PT_RELAUNCHED)) != 0 ||
+              loadRelaxed32(ctx.counter(PT_PREFETCHES)) >= ctx.farClaims)) {
+    releaseFarHold(ctx);
+    far = false;
+  }
+  if (!far && loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) == 0) return items;
+  const uint32_t limit = far ? items : items / ctx.prefetchPoses;
+  uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_PREFETCH), static_cast<uint32_t>(PT_BATCH));
+  if (far && first < items && first + PT_BATCH >= items) releaseFarHold(ctx);
+  return first < limit ? first : items;
+}
+
+// After a production task's brick is published: a prefetch task's is stamped for the frame of its
+// last pose (the next one, but for a far prefetch).
 GVDP_HD GVDP_INLINE void markIfPrefetched(const PtContext& ctx, uint32_t id, const BrickKey& key) {
-  if (id >= ctx.firstPrefetchId) markPrefetched(ctx.cache, key);
+  if (id >= ctx.firstPrefetchId) markPrefetched(ctx.cache, key, ctx.prefetchPoses);
 }
 
 // Parks a stopped ray (its state already saved) on the wait list of the task producing the
@@ -708,12 +748,17 @@ GVDP_HD GVDP_INLINE uint32_t ptRingFilled(uint32_t r, const PtLayout& layout) {
                            : 0u;
 }
 
-// Counter word i at the start of a frame: every ray live, every task id free.
-GVDP_HD GVDP_INLINE uint32_t initialPtCounter(size_t i, const PtLayout& layout) {
+// Counter word i at the start of a frame: every ray live, every task id free; a far prefetch's
+// hold (claimPrefetchItems).
+GVDP_HD GVDP_INLINE uint32_t initialPtCounter(size_t i, const PtLayout& layout, bool far) {
   if (i % PT_COUNTER_STRIDE != 0) return 0;
   const uint32_t k = static_cast<uint32_t>(i / PT_COUNTER_STRIDE);
   if (k < 3 * PT_RINGS) return k % 3 == 0 ? 0u : ptRingFilled(k / 3, layout);  // head; tail, ready
-  return k == PT_LIVE_WORK || k == PT_LIVE_RAYS ? layout.pixels : 0u;
+  const uint32_t hold = far ? 1u : 0u;
+  return k == PT_LIVE_WORK   ? layout.pixels + hold
+         : k == PT_LIVE_RAYS ? layout.pixels
+         : k == PT_FAR_HOLD  ? hold
+                             : 0u;
 }
 
 // The counter words from PT_FIRST_FRAME_COUNTER on start every frame afresh; those before it are
@@ -721,9 +766,10 @@ GVDP_HD GVDP_INLINE uint32_t initialPtCounter(size_t i, const PtLayout& layout) 
 constexpr size_t PT_FIRST_FRAME_COUNTER = size_t{PT_NEXT_ITEM} * PT_COUNTER_STRIDE;
 
 // With `keepRings`, the frame's counters only (the rings as the last frame left them).
-inline void initialPtCounters(uint32_t* c, const PtLayout& layout, bool keepRings = false) {
+inline void initialPtCounters(uint32_t* c, const PtLayout& layout, bool keepRings = false,
+                              bool far = false) {
   for (size_t i = keepRings ? PT_FIRST_FRAME_COUNTER : 0; i < PtLayout::COUNTERS; ++i)
-    c[i] = initialPtCounter(i, layout);
+    c[i] = initialPtCounter(i, layout, far);
 }
 
 // Whether a frame's rings, by their counters `c` at its end, are as a frame of `layout` starts
@@ -746,14 +792,16 @@ inline bool ptRingsQuiet(const uint32_t* c, const PtLayout& layout) {
 }
 
 // What a frame's prefetch did, read from its counters `c` at its end: the prefetch rays it marched
-// (of `items`) and the bricks they claimed.
+// (of `items`) and the bricks they claimed, and whether it was idle: no ray of it waited.
 struct PrefetchYield {
   uint32_t rays = 0, claims = 0;
+  bool idle = false;
 };
 
 inline PrefetchYield prefetchYield(const uint32_t* c, uint32_t items) {
   uint32_t taken = c[size_t{PT_NEXT_PREFETCH} * PT_COUNTER_STRIDE];  // claimed by batches: may pass
-  return {taken < items ? taken : items, c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE]};
+  return {taken < items ? taken : items, c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE],
+          c[size_t{PT_RELAUNCHED} * PT_COUNTER_STRIDE] == 0};
 }
 
 // The prefetch's density follows its yield: after a frame whose prefetch claimed less than a brick
@@ -770,20 +818,44 @@ inline PrefetchYield prefetchYield(const uint32_t* c, uint32_t items) {
 // nothing, corrects it: a swing of one frame.
 constexpr uint32_t PT_PREFETCH_YIELD = 4096, PT_PREFETCH_PROBE = 4;
 
+inline bool prefetchYielded(PrefetchYield last) {
+  return uint64_t{last.claims} * PT_PREFETCH_YIELD >= last.rays;
+}
+
 inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {
   if (stride == 0 || last.rays == 0) return stride;
-  return uint64_t{last.claims} * PT_PREFETCH_YIELD >= last.rays ? stride
-                                                                : stride * PT_PREFETCH_PROBE;
+  return prefetchYielded(last) ? stride : stride * PT_PREFETCH_PROBE;
+}
+
+// The far prefetch (`farPoses` > 1, GVDP_PT_FAR): after an idle frame (no ray waited: inside a
+// sphere, a floor frame), the prefetch marches the next farPoses frames the motion predicts, the
+// frame held open until it is done (claimPrefetchItems), its bricks stamped for the last pose;
+// at most a claim per PT_FAR_DIV pixels. Its first frame after a busy one is sparse, a ray per
+// (stride * PT_FAR_SPARSE)^2 pixels of each pose, and it goes dense (stride) after a far frame
+// that claimed at the yield: a floor frame, which finds nothing, marches few rays.
+constexpr uint32_t PT_FAR_SPARSE = 8, PT_FAR_DIV = 64;
+
+struct PrefetchPlan {
+  uint32_t stride = 0, poses = 1;
+};
+
+inline PrefetchPlan prefetchPlanAfter(uint32_t stride, uint32_t farPoses, PrefetchYield last,
+                                      uint32_t lastPoses) {
+  if (stride == 0 || farPoses <= 1 || !last.idle) return {prefetchStrideAfter(stride, last), 1};
+  const bool dense = lastPoses > 1 && last.rays != 0 && prefetchYielded(last);
+  return {dense ? stride : stride * PT_FAR_SPARSE, farPoses};
 }
 
 // A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from
-// the same view): rays of
-// the next frame as the motion from `previous` predicts it, one per stride x stride pixels, the
-// rows taken in an order that spreads a partial prefetch over the screen (a step about 0.618 of
-// the rows, prime to them).
+// the same view): rays of the next frame as the motion from `previous` predicts it (and of the
+// frames after it: a far prefetch's poses), one per stride x stride pixels, the rows taken in an
+// order that spreads a partial prefetch over the screen (a step about 0.618 of the rows, prime
+// to them).
 inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* previous,
-                        uint32_t stride) {
+                        PrefetchPlan plan) {
   ctx.prefetchItems = 0;
+  ctx.prefetchPoses = 1;
+  const uint32_t stride = plan.stride;
   if (stride == 0 || previous == nullptr || f.coldCache || f.width != f.imageWidth ||
       f.height != f.imageHeight || previous->frameIndex + 1 != f.frameIndex ||
       previous->width != f.width || previous->height != f.height || sameView(*previous, f))
@@ -795,8 +867,19 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
   uint32_t step = static_cast<uint32_t>(0.618 * rows) | 1u;
   while (std::gcd(step, rows) != 1) step += 2;
   ctx.prefetchColumns = columns;
-  ctx.prefetchItems = columns * rows;
   ctx.prefetchRowStep = step % rows;
+  // The poses: the same step and turn again and again (predictNextFrame).
+  const uint32_t poses = std::min(plan.poses, PT_FAR_MAX_POSES);
+  FrameSetup before = f, pose = ctx.prefetchFrame;
+  for (uint32_t k = 0; k < poses; ++k) {
+    ctx.poses[k] = {pose.eye, pose.basis};
+    FrameSetup after = predictNextFrame(before, pose);
+    before = pose;
+    pose = after;
+  }
+  ctx.prefetchPoses = poses;
+  ctx.prefetchItems = columns * rows * poses;
+  ctx.farClaims = static_cast<uint32_t>(f.pixelCount()) / PT_FAR_DIV;
 }
 
 }  // namespace gvdp::detail

@@ -45,6 +45,7 @@ class PtCpu final : public SpFrameCpu {
     addCacheStats(cache_, stats);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     lastPrefetch_ = addPtStats(counters_.data(), ctx.prefetchItems, stats);
+    lastPoses_ = ctx.prefetchPoses;
     previous_ = f;
   }
 
@@ -71,14 +72,15 @@ class PtCpu final : public SpFrameCpu {
     waitHead_.assign(layout_.taskIds(), LIST_CLOSED);
     waitNext_.assign(layout_.pixels, LIST_END);
     counters_.resize(PtLayout::COUNTERS);
-    initialPtCounters(counters_.data(), layout_, keepRings);
     PtContext ctx = makePtContext(f, cache_.view(), payload_.data(),
                                   {raySlots_.data(), taskSlots_.data(), freeSlots_.data(),
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
                                   lookahead_, tailLookahead_);
     setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr,
-                prefetchStrideAfter(prefetch_, lastPrefetch_));
+                prefetchPlanAfter(prefetch_, cache_.budgeted() ? 0u : farPoses_, lastPrefetch_,
+                                  lastPoses_));
+    initialPtCounters(counters_.data(), layout_, keepRings, ctx.prefetchPoses > 1);
     return ctx;
   }
 
@@ -165,7 +167,9 @@ class PtCpu final : public SpFrameCpu {
   };
 
   uint32_t lookahead_, tailLookahead_, prefetch_;
-  PrefetchYield lastPrefetch_;          // what the last frame's prefetch did
+  PrefetchYield lastPrefetch_;  // what the last frame's prefetch did
+  uint32_t lastPoses_ = 1;      // its poses (prefetchPlanAfter)
+  uint32_t farPoses_ = ptFarPosesFromEnvironment();
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   PtLayout layout_{};
   std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;

@@ -76,6 +76,7 @@ class PtCuda final : public SpFrameCuda {
     std::vector<uint32_t> c(counters_.size());
     readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
     lastPrefetch_ = addPtStats(c.data(), prefetchItems_, stats);
+    lastPoses_ = prefetchPoses_;
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
   }
@@ -101,8 +102,10 @@ class PtCuda final : public SpFrameCuda {
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
                                   lookahead_, tailLookahead_);
     setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr,
-                prefetchStrideAfter(prefetch_, lastPrefetch_));
+                prefetchPlanAfter(prefetch_, cache_.budgeted() ? 0u : farPoses_, lastPrefetch_,
+                                  lastPoses_));
     prefetchItems_ = ctx.prefetchItems;
+    prefetchPoses_ = ctx.prefetchPoses;
     uint32_t* words = productionCounters_.data();
     ctx.productions = {stage_.data(),        productionKey_.data(), words,
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
@@ -120,8 +123,10 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
   uint32_t lookahead_, tailLookahead_, prefetch_;
-  uint32_t prefetchItems_ = 0;          // this frame's prefetch rays
-  PrefetchYield lastPrefetch_;          // what the last frame's prefetch did
+  uint32_t prefetchItems_ = 0;                  // this frame's prefetch rays
+  PrefetchYield lastPrefetch_;                  // what the last frame's prefetch did
+  uint32_t prefetchPoses_ = 1, lastPoses_ = 1;  // this frame's and the last's (prefetchPlanAfter)
+  uint32_t farPoses_ = ptFarPosesFromEnvironment();
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   uint32_t workers_;                    // warps of the persistent kernel
   DeviceBuffer<Rgba8> stage_;

@@ -22,13 +22,14 @@ void launchPtFrameStart(const PtContext& ctx, const PtLayout& layout, bool keepR
   const uint32_t first = keepRings ? static_cast<uint32_t>(PT_FIRST_FRAME_COUNTER) : 0u;
   const uint32_t total = slots + static_cast<uint32_t>(PtLayout::COUNTERS) - first + 1;
   uint32_t* counters = ctx.counters;
+  const bool far = ctx.prefetchPoses > 1;
   parallelForCuda("pt: frame start", stream, total, ctx.frame.timeline, TaskKind::Cache,
                   [=] __device__(uint32_t i) {
                     if (i == total - 1) {
                       *resolveCount = 0;
                     } else if (i >= slots) {
                       uint32_t c = i - slots + first;
-                      counters[c] = initialPtCounter(c, layout);
+                      counters[c] = initialPtCounter(c, layout, far);
                     } else {
                       int k = 0;
                       while (i > rings[k].ring.mask) i -= rings[k++].ring.mask + 1;
