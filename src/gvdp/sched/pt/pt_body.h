@@ -26,7 +26,8 @@
 // from a third ring (`prefetchIds`), and only while half the frame's free slots are left (the
 // lookahead's claims too): the frame's own productions never fail for them. A prefetched brick is
 // stamped for the next frame (markPrefetched), whose end counts whether a ray used it. Nothing is
-// composited.
+// composited. A far prefetch (GVDP_PT_FAR, off by default: prefetchPlanAfter) marches several
+// predicted frames after an idle one.
 //
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
 // so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
@@ -832,7 +833,11 @@ inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {
 // frame held open until it is done (claimPrefetchItems), its bricks stamped for the last pose;
 // at most a claim per PT_FAR_DIV pixels. Its first frame after a busy one is sparse, a ray per
 // (stride * PT_FAR_SPARSE)^2 pixels of each pose, and it goes dense (stride) after a far frame
-// that claimed at the yield: a floor frame, which finds nothing, marches few rays.
+// that claimed at the yield: a floor frame, which finds nothing, marches few rays. H200, 25 pt
+// cells, N = 8 against off: 1% lows x1.036-1.051, FPS x0.991-0.998, floors x1.041-1.056 (a floor
+// frame still waits for its far marches), over-production at most 9.2%; aligned-spheres'
+// walkthrough's slowest frame 12.4-14.4 -> 4.0-6.3 ms (BENCHMARKS.md, session 59). Session 57's
+// dense start: floors x1.40, over-production 11.7%.
 constexpr uint32_t PT_FAR_SPARSE = 8, PT_FAR_DIV = 64;
 
 struct PrefetchPlan {
