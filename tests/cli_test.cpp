@@ -397,4 +397,22 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
                    "bad GVDP_PT_PRODUCER_SHARE 'two' (expected 0..4096; 0: off)");
 }
 
+// GVDP_PT_FAR turns on pt's far prefetch (unset or 0: off); anything but an integer 0..16 is an
+// error, on either backend.
+TEST(Cli, PtFarPrefetchEnvironmentIsChecked) {
+  test::EnvRestore restore("GVDP_PT_FAR");
+  for (const char* bad : {"eight", "-1", "17", "8x"}) {
+    setenv("GVDP_PT_FAR", bad, 1);
+    EXPECT_THROW(ptFarPosesFromEnvironment(), InputError) << bad;
+  }
+  setenv("GVDP_PT_FAR", "8", 1);
+  EXPECT_EQ(ptFarPosesFromEnvironment(), 8u);
+  unsetenv("GVDP_PT_FAR");
+  EXPECT_EQ(ptFarPosesFromEnvironment(), 0u);
+  setenv("GVDP_PT_FAR", "eight", 1);
+  const std::string out = " --out " + test::tempDir("cli_far");
+  expectInputError("render --backend cpu --scheduler pt" + TINY + out,
+                   "bad GVDP_PT_FAR 'eight' (expected 0..16 poses; 0: off)");
+}
+
 }  // namespace gvdp::detail

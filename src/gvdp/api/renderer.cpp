@@ -33,7 +33,10 @@ void validate(const RendererOptions& o) {
   GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
                    " (expected 1..150 degrees)");
   if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
-  if (o.scheduler.kind == SchedulerKind::Pt) ptProducerShareFromEnvironment();
+  if (o.scheduler.kind == SchedulerKind::Pt) {
+    ptProducerShareFromEnvironment();
+    ptFarPosesFromEnvironment();
+  }
 }
 
 namespace {

@@ -97,8 +97,8 @@ uint32_t ptFarPosesFromEnvironment() {
   const char* v = std::getenv("GVDP_PT_FAR");
   if (v == nullptr || *v == '\0') return 0;
   int64_t n = 0;
-  GVDP_INPUT_CHECK(parseInt(v, n) && n >= 0 && n <= 16, "bad GVDP_PT_FAR '", v,
-                   "' (expected 0..16 poses; 0: off)");
+  GVDP_INPUT_CHECK(parseInt(v, n) && n >= 0 && n <= PT_FAR_MAX_POSES, "bad GVDP_PT_FAR '", v,
+                   "' (expected 0..", PT_FAR_MAX_POSES, " poses; 0: off)");
   return static_cast<uint32_t>(n);
 }
 

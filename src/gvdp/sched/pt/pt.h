@@ -18,6 +18,7 @@ uint32_t ptProducerShareFromEnvironment();
 
 // pt's far prefetch (pt_body.h: prefetchPlanAfter): the poses GVDP_PT_FAR=N says, 0 (off) unless
 // set. Throws InputError naming any value but an integer 0..PT_FAR_MAX_POSES.
+inline constexpr uint32_t PT_FAR_MAX_POSES = 16;
 uint32_t ptFarPosesFromEnvironment();
 
 std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);

@@ -40,6 +40,7 @@
 #include <numeric>
 
 #include "gvdp/cache/lookahead.h"
+#include "gvdp/sched/pt/pt.h"
 #include "gvdp/sched/ray_tasks.h"
 #include "gvdp/sched/tile_order.h"
 
@@ -176,7 +177,6 @@ struct PrefetchPose {
   Vec3f eye;
   CameraBasis basis;
 };
-constexpr uint32_t PT_FAR_MAX_POSES = 16;
 
 struct PtContext {
   FrameSetup frame;
