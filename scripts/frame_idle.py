@@ -25,7 +25,9 @@ SUMMARY = re.compile(r"frame (\d+): ([\d.]+) ms; timeline: ([\d.]+) ms.*; idle (
 
 
 def fail(message):
-    print(f"frame_idle: {message}", file=sys.stderr)
+    """A one-line error naming the script that runs (frame_times.py uses it too), exit status 2."""
+    name = os.path.splitext(os.path.basename(sys.argv[0]))[0] or "frame_idle"
+    print(f"{name}: {message}", file=sys.stderr)
     sys.exit(2)
 
 

@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Each frame's time of a walk, run after run: `gvdp render` of the same walk by several gvdp
+binaries, interleaved run by run (binary A, B, ..., then A again), read from stats.json. A line a
+run: frame 0 (from an empty cache) with its spike flag and longest wait list (pt on the GPU), the
+later frames' mean and slowest (which one), their over-production (bricks produced and never
+sampled) and an md5 of the run's images; with --list, every frame's ms too. Then a line a binary:
+the medians and ranges over its runs, and whether every run of every binary rendered the same
+images (the schedulers' and the optimisations' rule: an image that changes is a bug). The tool
+sessions 57-59 rebuilt by hand for the sphere walks' exit frames and perlin's frame 0.
+
+Usage: scripts/frame_times.py [--runs N] [--scene S] [--movement M] [--frames N] [--list]
+                              [--scheduler S] [--backend B] [--size WxH] [LABEL=]BIN...
+A binary without a label is named by its folder, as scripts/frame_idle.py names them. Bad
+arguments, or a binary that is not there, are a one-line error with exit status 2; a run that
+fails is a line naming it, and the exit status is then 1; so are images that differ.
+"""
+import argparse
+import hashlib
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from frame_idle import binaries, fail, spread  # noqa: E402
+
+
+def run_line(frames):
+    """The figures of one run from stats.json's frames: frame 0's ms, spike and longest wait
+    list; the later frames' mean and slowest ms, its index, and their over-production in %."""
+    first = frames[0]
+    later = frames[1:] or frames
+    ms = [f["ms"] for f in later]
+    slowest = max(range(len(ms)), key=lambda i: ms[i])
+    produced = sum(f["bricks_produced"] for f in later)
+    unsampled = sum(f["bricks_unsampled"] for f in later)
+    return {"first": first["ms"], "spike": bool(first.get("spike", False)),
+            "longest": first.get("longest_wait_list", 0), "mean": sum(ms) / len(ms),
+            "max": ms[slowest], "max_at": later[slowest]["index"],
+            "over": 100.0 * unsampled / produced if produced else 0.0,
+            "unfinished": sum(f["unfinished_pixels"] for f in frames)}
+
+
+def images_md5(folder):
+    h = hashlib.md5()
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".png"):
+            with open(os.path.join(folder, name), "rb") as f:
+                h.update(f.read())
+    return h.hexdigest()[:12]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("bins", nargs="+", metavar="[LABEL=]BIN")
+    ap.add_argument("--runs", type=int, default=3, help="runs of each binary (3)")
+    ap.add_argument("--scene", default="aligned-spheres")
+    ap.add_argument("--movement", default="walkthrough")
+    ap.add_argument("--frames", type=int, default=34, help="frames of the walk (34)")
+    ap.add_argument("--list", action="store_true", help="every frame's ms on each run's line")
+    ap.add_argument("--scheduler", default="pt")
+    ap.add_argument("--backend", default="cuda")
+    ap.add_argument("--size", default="", help="WxH (default: gvdp's for the backend)")
+    a = ap.parse_args()
+    if a.runs < 1:
+        fail(f"bad --runs {a.runs} (expected N >= 1)")
+    if a.frames < 1:
+        fail(f"bad --frames {a.frames} (expected N >= 1)")
+    size = []
+    if a.size:
+        m = re.fullmatch(r"(\d+)x(\d+)", a.size)
+        if not m:
+            fail(f"bad --size '{a.size}' (expected WxH)")
+        size = ["--width", m.group(1), "--height", m.group(2)]
+    bins = binaries(a.bins)
+    os.environ.setdefault("GVDP_WATCHDOG_S", "60")
+    status = 0
+    got = {label: [] for label, _ in bins}
+    md5s = set()
+    walk = f"{a.scene} {a.movement}"
+    with tempfile.TemporaryDirectory() as d:
+        for run in range(a.runs):
+            for label, path in bins:
+                out = os.path.join(d, f"{label}_{run}")
+                cmd = [path, "render", "--backend", a.backend, "--scheduler", a.scheduler,
+                       "--scene", a.scene, "--movement", a.movement, "--frames", str(a.frames),
+                       "--out", out, *size]
+                r = subprocess.run(cmd, capture_output=True, text=True)
+                if r.returncode != 0:
+                    last = (r.stderr.strip().splitlines() or ["no message"])[-1]
+                    print(f"{walk} {label} run {run + 1}: failed (exit {r.returncode}): {last}",
+                          flush=True)
+                    status = 1
+                    continue
+                with open(os.path.join(out, "stats.json")) as f:
+                    frames = json.load(f)["frames"]
+                v = run_line(frames)
+                v["md5"] = images_md5(out)
+                md5s.add(v["md5"])
+                got[label].append(v)
+                listed = " | " + " ".join(f"{f['ms']:.1f}" for f in frames) if a.list else ""
+                print(f"{walk} {label} run {run + 1}: frame 0 {v['first']:.1f} ms"
+                      f"{' (spike)' if v['spike'] else ''}, longest wait list {v['longest']}; "
+                      f"then mean {v['mean']:.2f} ms, slowest {v['max']:.2f} ms (frame "
+                      f"{v['max_at']}), over-production {v['over']:.1f}%, unfinished "
+                      f"{v['unfinished']}, images {v['md5']}{listed}", flush=True)
+    for label, _ in bins:
+        v = got[label]
+        if not v:
+            continue
+        pick = lambda k: [x[k] for x in v]  # noqa: E731
+        print(f"{walk} {label}: {len(v)} runs, frame 0 {spread(pick('first'), 1, ' ms')}, "
+              f"mean {spread(pick('mean'), 2, ' ms')}, slowest {spread(pick('max'), 2, ' ms')}, "
+              f"over-production {spread(pick('over'), 1, '%')}", flush=True)
+    if len(md5s) > 1:
+        print(f"images differ: {len(md5s)} md5s over the runs ({', '.join(sorted(md5s))})")
+        status = 1
+    elif md5s:
+        print(f"images: the same in every run ({md5s.pop()})")
+    sys.exit(status)
+
+
+if __name__ == "__main__":
+    main()
