@@ -57,31 +57,42 @@ def binaries(specs):
     return out
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def common_arguments(ap, runs):
+    """The arguments of this script and frame_times.py: the binaries, runs of each, and what
+    they render."""
     ap.add_argument("bins", nargs="+", metavar="[LABEL=]BIN")
-    ap.add_argument("--runs", type=int, default=6, help="runs of each binary (6)")
-    ap.add_argument("--scenes", default="perlin,random-spheres")
-    ap.add_argument("--frame", type=int, default=12, help="the frame timed (12)")
+    ap.add_argument("--runs", type=int, default=runs, help=f"runs of each binary ({runs})")
     ap.add_argument("--movement", default="walkthrough")
     ap.add_argument("--scheduler", default="pt")
     ap.add_argument("--backend", default="cuda")
     ap.add_argument("--size", default="", help="WxH (default: gvdp's for the backend)")
-    a = ap.parse_args()
+
+
+def common_values(a):
+    """Those arguments checked: gvdp's size arguments and the (label, path) binaries."""
     if a.runs < 1:
         fail(f"bad --runs {a.runs} (expected N >= 1)")
-    if a.frame < 0:
-        fail(f"bad --frame {a.frame} (expected F >= 0)")
     size = []
     if a.size:
         m = re.fullmatch(r"(\d+)x(\d+)", a.size)
         if not m:
             fail(f"bad --size '{a.size}' (expected WxH)")
         size = ["--width", m.group(1), "--height", m.group(2)]
+    return size, binaries(a.bins)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    common_arguments(ap, 6)
+    ap.add_argument("--scenes", default="perlin,random-spheres")
+    ap.add_argument("--frame", type=int, default=12, help="the frame timed (12)")
+    a = ap.parse_args()
+    if a.frame < 0:
+        fail(f"bad --frame {a.frame} (expected F >= 0)")
+    size, bins = common_values(a)
     scenes = [s for s in a.scenes.split(",") if s]
     if not scenes:
         fail(f"bad --scenes '{a.scenes}' (expected a comma-separated list)")
-    bins = binaries(a.bins)
     os.environ.setdefault("GVDP_WATCHDOG_S", "60")
     status = 0
     with tempfile.TemporaryDirectory() as d:

@@ -18,13 +18,12 @@ import argparse
 import hashlib
 import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from frame_idle import binaries, fail, spread  # noqa: E402
+from frame_idle import common_arguments, common_values, fail, spread  # noqa: E402
 
 
 def run_line(frames):
@@ -54,27 +53,14 @@ def images_md5(folder):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("bins", nargs="+", metavar="[LABEL=]BIN")
-    ap.add_argument("--runs", type=int, default=3, help="runs of each binary (3)")
+    common_arguments(ap, 3)
     ap.add_argument("--scene", default="aligned-spheres")
-    ap.add_argument("--movement", default="walkthrough")
     ap.add_argument("--frames", type=int, default=34, help="frames of the walk (34)")
     ap.add_argument("--list", action="store_true", help="every frame's ms on each run's line")
-    ap.add_argument("--scheduler", default="pt")
-    ap.add_argument("--backend", default="cuda")
-    ap.add_argument("--size", default="", help="WxH (default: gvdp's for the backend)")
     a = ap.parse_args()
-    if a.runs < 1:
-        fail(f"bad --runs {a.runs} (expected N >= 1)")
     if a.frames < 1:
         fail(f"bad --frames {a.frames} (expected N >= 1)")
-    size = []
-    if a.size:
-        m = re.fullmatch(r"(\d+)x(\d+)", a.size)
-        if not m:
-            fail(f"bad --size '{a.size}' (expected WxH)")
-        size = ["--width", m.group(1), "--height", m.group(2)]
-    bins = binaries(a.bins)
+    size, bins = common_values(a)
     os.environ.setdefault("GVDP_WATCHDOG_S", "60")
     status = 0
     got = {label: [] for label, _ in bins}
