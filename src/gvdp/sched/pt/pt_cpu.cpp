@@ -20,7 +20,7 @@ class PtCpu final : public SpFrameCpu {
       : SpFrameCpu(o, std::move(p)),
         lookahead_(o.lookahead),
         tailLookahead_(ptTailLookahead(o)),
-        prefetch_(o.prefetch) {}
+        prefetch_(o.prefetch, ptFarPosesFromEnvironment()) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();
@@ -44,8 +44,7 @@ class PtCpu final : public SpFrameCpu {
     stats.unfinishedPixels = resolveCpu(f, payload_.data(), out);
     addCacheStats(cache_, stats);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
-    lastPrefetch_ = addPtStats(counters_.data(), ctx.prefetchItems, stats);
-    lastPoses_ = ctx.prefetchPoses;
+    prefetch_.ended(counters_.data(), stats);
     previous_ = f;
   }
 
@@ -77,9 +76,8 @@ class PtCpu final : public SpFrameCpu {
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
                                   lookahead_, tailLookahead_);
-    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr,
-                prefetchPlanAfter(prefetch_, cache_.budgeted() ? 0u : farPoses_, lastPrefetch_,
-                                  lastPoses_));
+    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_.next(cache_.budgeted()));
+    prefetch_.started(ctx);
     initialPtCounters(counters_.data(), layout_, keepRings, ctx.prefetchPoses > 1);
     return ctx;
   }
@@ -166,10 +164,8 @@ class PtCpu final : public SpFrameCpu {
     }
   };
 
-  uint32_t lookahead_, tailLookahead_, prefetch_;
-  PrefetchYield lastPrefetch_;  // what the last frame's prefetch did
-  uint32_t lastPoses_ = 1;      // its poses (prefetchPlanAfter)
-  uint32_t farPoses_ = ptFarPosesFromEnvironment();
+  uint32_t lookahead_, tailLookahead_;
+  PrefetchHistory prefetch_;
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   PtLayout layout_{};
   std::vector<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;

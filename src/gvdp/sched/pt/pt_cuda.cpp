@@ -33,7 +33,7 @@ class PtCuda final : public SpFrameCuda {
         blocks_(cudaProducer().ptWorkerBlocks()),
         lookahead_(o.lookahead),
         tailLookahead_(ptTailLookahead(o)),
-        prefetch_(o.prefetch),
+        prefetch_(o.prefetch, ptFarPosesFromEnvironment()),
         workers_(static_cast<uint32_t>(blocks_) * PT_WORKER_WARPS),
         stage_(size_t{workers_} * BRICK_SAMPLE_COUNT),
         productionKey_(workers_),
@@ -75,8 +75,7 @@ class PtCuda final : public SpFrameCuda {
     SpFrameCuda::finishFrame(f, out, stats);
     std::vector<uint32_t> c(counters_.size());
     readDevice(c.data(), counters_.data(), counters_.bytes(), stream());
-    lastPrefetch_ = addPtStats(c.data(), prefetchItems_, stats);
-    lastPoses_ = prefetchPoses_;
+    prefetch_.ended(c.data(), stats);
     stats.degraded = stats.degraded || stats.cache.failed != 0;
     ringsQuiet_ = ptRingsQuiet(c.data(), layout_);
   }
@@ -101,11 +100,8 @@ class PtCuda final : public SpFrameCuda {
                                    lookaheadSlots_.data(), prefetchSlots_.data(), taskKey_.data(),
                                    waitHead_.data(), waitNext_.data(), counters_.data(), layout_},
                                   lookahead_, tailLookahead_);
-    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr,
-                prefetchPlanAfter(prefetch_, cache_.budgeted() ? 0u : farPoses_, lastPrefetch_,
-                                  lastPoses_));
-    prefetchItems_ = ctx.prefetchItems;
-    prefetchPoses_ = ctx.prefetchPoses;
+    setPrefetch(ctx, f, previous_ ? &*previous_ : nullptr, prefetch_.next(cache_.budgeted()));
+    prefetch_.started(ctx);
     uint32_t* words = productionCounters_.data();
     ctx.productions = {stage_.data(),        productionKey_.data(), words,
                        words + workers_,     words + 2 * workers_,  words + 3 * workers_,
@@ -122,11 +118,8 @@ class PtCuda final : public SpFrameCuda {
   DeviceBuffer<uint64_t> raySlots_, taskSlots_, freeSlots_, lookaheadSlots_, prefetchSlots_;
   DeviceBuffer<BrickKey> taskKey_;
   int blocks_;
-  uint32_t lookahead_, tailLookahead_, prefetch_;
-  uint32_t prefetchItems_ = 0;                  // this frame's prefetch rays
-  PrefetchYield lastPrefetch_;                  // what the last frame's prefetch did
-  uint32_t prefetchPoses_ = 1, lastPoses_ = 1;  // this frame's and the last's (prefetchPlanAfter)
-  uint32_t farPoses_ = ptFarPosesFromEnvironment();
+  uint32_t lookahead_, tailLookahead_;
+  PrefetchHistory prefetch_;
   std::optional<FrameSetup> previous_;  // the last frame rendered (the prefetch's prediction)
   uint32_t workers_;                    // warps of the persistent kernel
   DeviceBuffer<Rgba8> stage_;

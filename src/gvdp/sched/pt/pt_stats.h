@@ -27,4 +27,31 @@ inline PrefetchYield addPtStats(const uint32_t* c, uint32_t prefetchItems, Frame
   return prefetch;
 }
 
+// The prefetch from frame to frame, for the host of either backend: its density (`stride`, 0:
+// off) and far poses, what the last frame's prefetch did, and the next frame's plan from it.
+class PrefetchHistory {
+ public:
+  PrefetchHistory(uint32_t stride, uint32_t farPoses) : stride_(stride), farPoses_(farPoses) {}
+
+  // A budgeted frame has no far prefetch: it would hold the frame open past its deadline.
+  PrefetchPlan next(bool budgeted) const {
+    return prefetchPlanAfter(stride_, budgeted ? 0u : farPoses_, last_, lastPoses_);
+  }
+  void started(const PtContext& ctx) {
+    items_ = ctx.prefetchItems;
+    poses_ = ctx.prefetchPoses;
+  }
+  // The frame's pt statistics from its counters `c` (addPtStats).
+  void ended(const uint32_t* c, FrameStats& stats) {
+    last_ = addPtStats(c, items_, stats);
+    lastPoses_ = poses_;
+  }
+
+ private:
+  uint32_t stride_, farPoses_;
+  PrefetchYield last_;
+  uint32_t lastPoses_ = 1;
+  uint32_t items_ = 0, poses_ = 1;  // the frame's, from its start to its end
+};
+
 }  // namespace gvdp::detail
