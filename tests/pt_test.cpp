@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <numeric>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -389,22 +390,27 @@ TEST(PtPrefetch, NoneForAStillCamera) {
   EXPECT_EQ(items(turned), 80u * 50u);
 }
 
-// The far prefetch's plan: only after an idle frame (no ray waited), sparse after a busy one,
-// dense after a far frame that yielded; without far poses, a budget or a prefetch, the next
-// frame's plan as before.
+// The far prefetch's plan: only after an idle frame (no ray waited) whose next-frame rays entered
+// fewer than PT_FAR_DEPTH bricks each (a closed view), its later poses sparse after a busy frame
+// and dense after a far frame that yielded, its first pose (the next frame) always dense; without
+// far poses, a budget or a prefetch, the next frame's plan as before.
 TEST(PtPrefetch, FarOnlyAfterAnIdleFrameAndDenseOnlyAfterAFarYield) {
   auto plan = [](uint32_t far, PrefetchYield y, uint32_t lastPoses) {
     PrefetchPlan p = prefetchPlanAfter(4, far, y, lastPoses);
-    return std::pair{p.stride, p.poses};
+    return std::tuple{p.stride, p.poses, p.farStride};
   };
-  using P = std::pair<uint32_t, uint32_t>;
-  EXPECT_EQ(plan(8, {94000, 0, false}, 1), P(16, 1)) << "a busy frame: the next frame's plan";
-  EXPECT_EQ(plan(0, {94000, 0, true}, 1), P(16, 1)) << "far off";
-  EXPECT_EQ(plan(8, {94000, 30, true}, 1), P(4 * PT_FAR_SPARSE, 8)) << "idle: far, sparse first";
-  EXPECT_EQ(plan(8, {1500, 1, true}, 8), P(4, 8)) << "a far frame that yielded: dense";
-  EXPECT_EQ(plan(8, {1500, 0, true}, 8), P(4 * PT_FAR_SPARSE, 8)) << "one that found nothing";
-  EXPECT_EQ(plan(8, {0, 0, true}, 8), P(4 * PT_FAR_SPARSE, 8)) << "none marched: sparse";
-  EXPECT_EQ(prefetchPlanAfter(0, 8, {1500, 1, true}, 8).stride, 0u) << "no prefetch, no far";
+  using P = std::tuple<uint32_t, uint32_t, uint32_t>;
+  const uint32_t sparse = 4 * PT_FAR_SPARSE, closed = 5900 * (PT_FAR_DEPTH - 1);
+  const uint32_t open = 5900 * PT_FAR_DEPTH;
+  EXPECT_EQ(plan(8, {94000, 0, false, 5900, closed}, 1), P(16, 1, 0)) << "a busy frame";
+  EXPECT_EQ(plan(0, {94000, 0, true, 5900, closed}, 1), P(16, 1, 0)) << "far off";
+  EXPECT_EQ(plan(8, {94000, 30, true, 5900, open}, 1), P(4, 1, 0)) << "idle, but an open view";
+  EXPECT_EQ(plan(8, {0, 0, true, 0, 0}, 1), P(4, 8, sparse)) << "the rays ended first";
+  EXPECT_EQ(plan(8, {94000, 30, true, 5900, closed}, 1), P(4, 8, sparse)) << "sparse first";
+  EXPECT_EQ(plan(8, {1500, 1, true, 5900, closed}, 8), P(4, 8, 4)) << "a far yield: dense";
+  EXPECT_EQ(plan(8, {1500, 1, true, 5900, open}, 8), P(4, 8, 4)) << "far goes on while idle";
+  EXPECT_EQ(plan(8, {1500, 0, true, 5900, closed}, 8), P(4, 8, sparse)) << "found nothing";
+  EXPECT_EQ(prefetchPlanAfter(0, 8, {1500, 1, true, 5900, 0}, 8).stride, 0u) << "no prefetch";
 }
 
 // The prefetch is dense after a frame whose prefetch claimed a brick per PT_PREFETCH_YIELD rays
@@ -422,10 +428,14 @@ TEST(PtPrefetch, IsDenseOnlyAfterOneThatYielded) {
   c[size_t{PT_NEXT_PREFETCH} * PT_COUNTER_STRIDE] =
       4000 + PT_BATCH;  // batches claimed past the end
   c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE] = 3;
-  PrefetchYield y = prefetchYield(c.data(), 4000);
+  c[size_t{PT_PREFETCH_ENTERED} * PT_COUNTER_STRIDE] = 9000;
+  PrefetchYield y = prefetchYield(c.data(), 4000, 1000);
   EXPECT_EQ(y.rays, 4000u);
   EXPECT_EQ(y.claims, 3u);
-  EXPECT_EQ(prefetchYield(c.data(), 5000).rays, 4000u + PT_BATCH);
+  EXPECT_EQ(y.nearRays, 1000u) << "the next frame's rays come first";
+  EXPECT_EQ(y.entered, 9000u);
+  EXPECT_EQ(prefetchYield(c.data(), 5000, 5000).rays, 4000u + PT_BATCH);
+  EXPECT_EQ(prefetchYield(c.data(), 5000, 5000).nearRays, 4000u + PT_BATCH);
 }
 
 // A prefetch march may outlive the frame's rays only once the frame's prefetch has claimed a

@@ -45,14 +45,16 @@ struct LookaheadAccess {
   GVDP_HD Vec4f sample(const BrickLookup& b, Vec3f p) { return cached.sample(b, p); }
 };
 
-// Looks ahead of a ray stopped in state s (the state itself is not changed).
+// Looks ahead of a ray stopped in state s (the state itself is not changed); returns the bricks
+// it entered.
 template <PoolReads READS, class Pool, class OnMiss>
-GVDP_HD void lookAhead(const Ray& ray, const Lod& lod, RayState s, const CacheView& cache,
-                       const Pool& pool, OnMiss onMiss, uint32_t cap,
-                       int standInLevels = STAND_INS_ANY) {
-  if (cap == 0) return;
+GVDP_HD uint32_t lookAhead(const Ray& ray, const Lod& lod, RayState s, const CacheView& cache,
+                           const Pool& pool, OnMiss onMiss, uint32_t cap,
+                           int standInLevels = STAND_INS_ANY) {
+  if (cap == 0) return 0;
   LookaheadAccess<Pool, OnMiss, READS> access{{cache, pool, lod, onMiss}, cap + 1, standInLevels};
   march(ray, lod, s, access);
+  return cap + 1 - access.left;
 }
 
 }  // namespace gvdp::detail

@@ -77,6 +77,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
                     {"lookahead_claims", f.lookaheadClaims},
                     {"prefetch_claims", f.prefetchClaims},
                     {"prefetch_rays", f.prefetchRays},
+                    {"prefetch_entered", f.prefetchEntered},
                     {"prefetch_items", f.prefetchItems},
                     {"bricks_prefetched", f.cache.prefetched},
                     {"prefetched_unused", f.cache.prefetchUnused},

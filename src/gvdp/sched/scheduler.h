@@ -45,6 +45,7 @@ struct FrameStats {
   uint64_t lookaheadClaims = 0;  // pt: bricks claimed ahead of stopped rays (cache/lookahead.h)
   uint64_t prefetchClaims = 0;   // pt: bricks claimed for the next frame (idle-time prefetch)
   uint64_t prefetchRays = 0;     // pt: the prefetch's rays marched, of prefetchItems offered
+  uint64_t prefetchEntered = 0;  // pt: the bricks its rays of the next frame entered
   uint64_t prefetchItems = 0;
   int tiles = 1;        // tiles the image was rendered as (tiles/tiled_frame.h)
   int tileSplits = 0;   // renders replaced by tiles (the pool overflowed)

@@ -128,6 +128,7 @@ void addTileStats(FrameStats& total, const FrameStats& t) {
   total.lookaheadClaims += t.lookaheadClaims;
   total.prefetchClaims += t.prefetchClaims;
   total.prefetchRays += t.prefetchRays;
+  total.prefetchEntered += t.prefetchEntered;
   total.prefetchItems += t.prefetchItems;
   total.lodBias = std::max(total.lodBias, t.lodBias);
   total.tilePlans += t.tilePlans;

@@ -27,7 +27,7 @@
 // lookahead's claims too): the frame's own productions never fail for them. A prefetched brick is
 // stamped for the next frame (markPrefetched), whose end counts whether a ray used it. Nothing is
 // composited. A far prefetch (GVDP_PT_FAR, off by default: prefetchPlanAfter) marches several
-// predicted frames after an idle one.
+// predicted frames after an idle one with a closed view.
 //
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),
 // so `rays` holds at most `pixels` items; every unfinished task from `freeIds` has its winning
@@ -70,21 +70,22 @@ enum PtCounter : int {
   PT_PREFETCH_HEAD,  // the prefetch's free ids
   PT_PREFETCH_TAIL,
   PT_PREFETCH_READY,
-  PT_NEXT_ITEM,      // next item of the screen (fresh rays; tile_order.h)
-  PT_LIVE_WORK,      // rays and production tasks not finished; the frame is over at 0
-  PT_PRODUCTIONS,    // production tasks run
-  PT_RELAUNCHED,     // rays queued again by a production
-  PT_RENDER_TASKS,   // render tasks run (fresh and relaunched)
-  PT_LOOKAHEAD,      // bricks claimed by lookaheads
-  PT_LIVE_RAYS,      // rays not finished (the prefetch runs only while some are)
-  PT_NEXT_PREFETCH,  // next prefetch ray
-  PT_PREFETCHES,     // bricks claimed by the prefetch
-  PT_OPEN,           // productions with chunks left for helpers (pt_worker.cuh: openProduction)
-  PT_EXITED,         // warps that left the loop (counted with producer SMs only: pt_worker.cuh)
-  PT_IN_FLIGHT,      // production tasks taken and not ended (the same)
-  PT_SPIKE,          // nonzero once the frame's backlog reached spikeBacklog (the same)
-  PT_LONGEST_LIST,   // the most rays one production queued again (a wait list's length)
-  PT_FAR_HOLD,       // 1 while a far prefetch holds the frame open (claimPrefetchItems)
+  PT_NEXT_ITEM,         // next item of the screen (fresh rays; tile_order.h)
+  PT_LIVE_WORK,         // rays and production tasks not finished; the frame is over at 0
+  PT_PRODUCTIONS,       // production tasks run
+  PT_RELAUNCHED,        // rays queued again by a production
+  PT_RENDER_TASKS,      // render tasks run (fresh and relaunched)
+  PT_LOOKAHEAD,         // bricks claimed by lookaheads
+  PT_LIVE_RAYS,         // rays not finished (the prefetch runs only while some are)
+  PT_NEXT_PREFETCH,     // next prefetch ray
+  PT_PREFETCHES,        // bricks claimed by the prefetch
+  PT_OPEN,              // productions with chunks left for helpers (pt_worker.cuh: openProduction)
+  PT_EXITED,            // warps that left the loop (counted with producer SMs only: pt_worker.cuh)
+  PT_IN_FLIGHT,         // production tasks taken and not ended (the same)
+  PT_SPIKE,             // nonzero once the frame's backlog reached spikeBacklog (the same)
+  PT_LONGEST_LIST,      // the most rays one production queued again (a wait list's length)
+  PT_FAR_HOLD,          // 1 while a far prefetch holds the frame open (claimPrefetchItems)
+  PT_PREFETCH_ENTERED,  // bricks the next frame's prefetch rays entered (prefetchRay)
   PT_COUNTER_COUNT
 };
 
@@ -172,6 +173,13 @@ struct PtProductions {
   uint32_t* openCount;  // the bits set (ctx.counter(PT_OPEN)), read before a search
 };
 
+// A prefetch's rays over one pose: one per stride x stride pixels, `columns` of them a row, the
+// rows taken in the order k * rowStep mod rows (setPrefetch).
+struct PrefetchGrid {
+  uint32_t stride = 1, columns = 1, rows = 1, rowStep = 0;
+  GVDP_HD uint32_t items() const { return columns * rows; }
+};
+
 // A predicted frame's camera (a far prefetch's poses: setPrefetch).
 struct PrefetchPose {
   Vec3f eye;
@@ -183,28 +191,28 @@ struct PtContext {
   CacheView cache;
   RayState* payload;
   Ring rays, tasks, freeIds;
-  Ring lookaheadIds;                        // values v: task id firstLookaheadId + v
-  uint32_t firstLookaheadId;                // ids below come from freeIds
-  uint32_t lookahead;                       // bricks a stopped ray claims ahead of it (0: none)
-  uint32_t tailRays;                        // live rays at most: the frame's tail
-  uint32_t tailLookahead;                   // its lookahead (sched/scheduler.h: ptTailLookahead)
-  Ring prefetchIds;                         // values v: task id firstPrefetchId + v
-  uint32_t firstPrefetchId;                 // ids from here on are the prefetch's
-  FrameSetup prefetchFrame;                 // the predicted next frame (setPrefetch)
-  uint32_t prefetchStride;                  // a prefetch ray per prefetchStride^2 pixels
-  uint32_t prefetchColumns, prefetchItems;  // prefetch rays per row, in all (0: no prefetch)
-  uint32_t prefetchRowStep;   // prefetch rows are taken in the order k * step mod rows
-  BrickKey* taskKey;          // per task id
-  uint32_t* waitHead;         // per task id: LIST_END, a pixel, or LIST_CLOSED
-  uint32_t* waitNext;         // per pixel
-  uint32_t* counters;         // PtCounter, PT_COUNTER_STRIDE apart
-  uint32_t itemCount;         // items of the screen (tile_order.h: orderedItemCount)
-  TileOrder tiles;            // their order (the GPU's; row-major on the CPU)
-  PtProductions productions;  // the GPU's (pt_worker.cuh)
-  uint32_t producerShare;     // the GPU's producer SMs (pt_worker.cuh: roleNow); 0: none
-  uint32_t spikeBacklog;      // the backlog from which a frame has no producer SMs (the same)
-  // The prefetch's predicted frames, each prefetchItems / prefetchPoses rays (a far prefetch:
-  // more than one), their cameras (the next frame's first), and a far prefetch's claims at most.
+  Ring lookaheadIds;               // values v: task id firstLookaheadId + v
+  uint32_t firstLookaheadId;       // ids below come from freeIds
+  uint32_t lookahead;              // bricks a stopped ray claims ahead of it (0: none)
+  uint32_t tailRays;               // live rays at most: the frame's tail
+  uint32_t tailLookahead;          // its lookahead (sched/scheduler.h: ptTailLookahead)
+  Ring prefetchIds;                // values v: task id firstPrefetchId + v
+  uint32_t firstPrefetchId;        // ids from here on are the prefetch's
+  FrameSetup prefetchFrame;        // the predicted next frame (setPrefetch)
+  PrefetchGrid nearGrid, farGrid;  // the next frame's rays, each later pose's
+  uint32_t prefetchItems;          // prefetch rays in all (0: no prefetch)
+  BrickKey* taskKey;               // per task id
+  uint32_t* waitHead;              // per task id: LIST_END, a pixel, or LIST_CLOSED
+  uint32_t* waitNext;              // per pixel
+  uint32_t* counters;              // PtCounter, PT_COUNTER_STRIDE apart
+  uint32_t itemCount;              // items of the screen (tile_order.h: orderedItemCount)
+  TileOrder tiles;                 // their order (the GPU's; row-major on the CPU)
+  PtProductions productions;       // the GPU's (pt_worker.cuh)
+  uint32_t producerShare;          // the GPU's producer SMs (pt_worker.cuh: roleNow); 0: none
+  uint32_t spikeBacklog;           // the backlog from which a frame has no producer SMs (the same)
+  // The prefetch's predicted frames (a far prefetch: more than one), their cameras (the next
+  // frame's first, nearGrid's rays; the others farGrid's each), and a far prefetch's claims at
+  // most.
   uint32_t prefetchPoses = 1;
   PrefetchPose poses[PT_FAR_MAX_POSES];
   uint32_t farClaims = 0;
@@ -324,9 +332,14 @@ struct StartAhead {
   static GVDP_HD StartAhead lookahead(const PtContext& c, uint32_t bricks) {
     return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks, false};
   }
+  // A far prefetch's marches all go on: its frame is idle (prefetchPlanAfter).
   static GVDP_HD StartAhead prefetch(const PtContext& c) {
-    const bool far = loadRelaxed32(c.counter(PT_FAR_HOLD)) != 0;  // (claimPrefetchItems)
-    return {&c, &c.prefetchIds, c.firstPrefetchId, PT_PREFETCHES, MAX_LATE_CLAIMS, !far};
+    return {&c,
+            &c.prefetchIds,
+            c.firstPrefetchId,
+            PT_PREFETCHES,
+            MAX_LATE_CLAIMS,
+            c.prefetchPoses == 1};
   }
   // Whether the march may enter another brick (cache/lookahead.h). A prefetch march enters none
   // after the frame's last ray has finished unless the frame's prefetch has claimed a brick: the
@@ -357,6 +370,12 @@ struct StartAhead {
 // 4% slower, 32 +5.5%; 4 claims a ray instead of 8, less in both.
 constexpr uint32_t PT_PREFETCH_BRICKS = 64;
 
+// Bricks a far prefetch's ray of a later pose may enter (its first pose's: PT_PREFETCH_BRICKS).
+// At 1500 x 1000 a pose past a sphere's wall crosses more than 64 bricks of air before the next
+// spheres: with 64, random-spheres' forward walk's far frames claimed nothing from their
+// second on (H200, BENCHMARKS.md, session 60).
+constexpr uint32_t PT_FAR_BRICKS = 256;
+
 // How many levels above a brick that is not resident a prefetch ray's stand-in may be
 // (cache/lookahead.h). A parent predicts where the ray becomes opaque; a coarser ancestor, all a
 // region new in view has, is opaque far from where the ray at its own level meets the matter: a
@@ -372,26 +391,33 @@ constexpr int PT_PREFETCH_STAND_IN_LEVELS = 1;
 // Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre of its
 // prefetchStride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: stand-ins at
 // most PT_PREFETCH_STAND_IN_LEVELS above, no waiting, no timestamp, nothing composited).
+// Returns the bricks it entered, 0 for a later pose's (PT_PREFETCH_ENTERED counts the others).
 template <class Pool>
-GVDP_HD void prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
-  const uint32_t perPose = ctx.prefetchItems / ctx.prefetchPoses, pose = item / perPose;
-  item %= perPose;
+GVDP_HD uint32_t prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
+  const PrefetchGrid* g = &ctx.nearGrid;
+  uint32_t pose = 0;
+  if (item >= g->items()) {
+    item -= g->items();
+    g = &ctx.farGrid;
+    pose = 1 + item / g->items();
+    item %= g->items();
+  }
   FrameSetup f = ctx.prefetchFrame;
   f.eye = ctx.poses[pose].eye;
   f.basis = ctx.poses[pose].basis;
-  uint32_t rows = perPose / ctx.prefetchColumns;
-  uint32_t column = item % ctx.prefetchColumns, row = item / ctx.prefetchColumns;
-  row = static_cast<uint32_t>(uint64_t{row} * ctx.prefetchRowStep % rows);
-  const uint32_t s = ctx.prefetchStride;
+  uint32_t column = item % g->columns, row = item / g->columns;
+  row = static_cast<uint32_t>(uint64_t{row} * g->rowStep % g->rows);
+  const uint32_t s = g->stride;
   // A far prefetch's pixel in each s x s moves from frame to frame (idle frames march the same
   // ground again, one pose on).
   const uint32_t j = ctx.prefetchPoses > 1 ? static_cast<uint32_t>(f.frameIndex) * 7u + pose : 0u;
   int x = static_cast<int>(column * s + (s / 2 + j) % s);
   int y = static_cast<int>(row * s + (s / 2 + 3u * j) % s);
   Ray ray = f.primaryRay(x < f.width ? x : f.width - 1, y < f.height ? y : f.height - 1);
-  lookAhead<PoolReads::Coherent>(ray, f.lod, initialRayState(), ctx.cache, pool,
-                                 StartAhead::prefetch(ctx), PT_PREFETCH_BRICKS,
-                                 PT_PREFETCH_STAND_IN_LEVELS);
+  const uint32_t entered = lookAhead<PoolReads::Coherent>(
+      ray, f.lod, initialRayState(), ctx.cache, pool, StartAhead::prefetch(ctx),
+      pose == 0 ? PT_PREFETCH_BRICKS : PT_FAR_BRICKS, PT_PREFETCH_STAND_IN_LEVELS);
+  return pose == 0 ? entered : 0u;
 }
 
 // The first of the next PT_BATCH prefetch rays, prefetchItems when none is to be taken: none
@@ -421,7 +447,7 @@ GVDP_HD GVDP_INLINE uint32_t claimPrefetchItems(const PtContext& ctx) {
     far = false;
   }
   if (!far && loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) == 0) return items;
-  const uint32_t limit = far ? items : items / ctx.prefetchPoses;
+  const uint32_t limit = far ? items : ctx.nearGrid.items();
   uint32_t first = atomicAdd32(ctx.counter(PT_NEXT_PREFETCH), static_cast<uint32_t>(PT_BATCH));
   if (far && first < items && first + PT_BATCH >= items) releaseFarHold(ctx);
   return first < limit ? first : items;
@@ -794,15 +820,19 @@ inline bool ptRingsQuiet(const uint32_t* c, const PtLayout& layout) {
 
 // What a frame's prefetch did, read from its counters `c` at its end: the prefetch rays it marched
 // (of `items`) and the bricks they claimed, and whether it was idle: no ray of it waited.
+// Also the next frame's rays marched (the first `nearItems`) and the bricks they entered.
 struct PrefetchYield {
   uint32_t rays = 0, claims = 0;
   bool idle = false;
+  uint32_t nearRays = 0, entered = 0;
 };
 
-inline PrefetchYield prefetchYield(const uint32_t* c, uint32_t items) {
+inline PrefetchYield prefetchYield(const uint32_t* c, uint32_t items, uint32_t nearItems) {
   uint32_t taken = c[size_t{PT_NEXT_PREFETCH} * PT_COUNTER_STRIDE];  // claimed by batches: may pass
-  return {taken < items ? taken : items, c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE],
-          c[size_t{PT_RELAUNCHED} * PT_COUNTER_STRIDE] == 0};
+  taken = taken < items ? taken : items;
+  return {taken, c[size_t{PT_PREFETCHES} * PT_COUNTER_STRIDE],
+          c[size_t{PT_RELAUNCHED} * PT_COUNTER_STRIDE] == 0, taken < nearItems ? taken : nearItems,
+          c[size_t{PT_PREFETCH_ENTERED} * PT_COUNTER_STRIDE]};
 }
 
 // The prefetch's density follows its yield: after a frame whose prefetch claimed less than a brick
@@ -828,27 +858,57 @@ inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {
   return prefetchYielded(last) ? stride : stride * PT_PREFETCH_PROBE;
 }
 
-// The far prefetch (`farPoses` > 1, GVDP_PT_FAR): after an idle frame (no ray waited: inside a
-// sphere, a floor frame), the prefetch marches the next farPoses frames the motion predicts, the
-// frame held open until it is done (claimPrefetchItems), its bricks stamped for the last pose;
-// at most a claim per PT_FAR_DIV pixels. Its first frame after a busy one is sparse, a ray per
-// (stride * PT_FAR_SPARSE)^2 pixels of each pose, and it goes dense (stride) after a far frame
-// that claimed at the yield: a floor frame, which finds nothing, marches few rays. H200, 25 pt
-// cells, N = 8 against off: 1% lows x1.036-1.051, FPS x0.991-0.998, floors x1.041-1.056 (a floor
-// frame still waits for its far marches), over-production at most 9.2%; aligned-spheres'
-// walkthrough's slowest frame 12.4-14.4 -> 4.0-6.3 ms (BENCHMARKS.md, session 59). Session 57's
-// dense start: floors x1.40, over-production 11.7%.
+// The far prefetch (`farPoses` > 1, GVDP_PT_FAR): after an idle frame (no ray waited) whose view
+// is closed (PT_FAR_DEPTH: inside a sphere), the prefetch marches the next farPoses frames the
+// motion predicts, the frame held open until their rays are taken (claimPrefetchItems) and their
+// marches done (StartAhead::prefetch), its bricks stamped for the last pose; at most a claim per
+// PT_FAR_DIV pixels. Its first pose, the next frame, is dense (`stride`): a brick of it missed
+// makes a ray of the next frame wait, and that frame busy, which breaks the chain of far frames.
+// The later poses are sparse, a ray per (stride * PT_FAR_SPARSE)^2 pixels, in a far frame after a
+// busy one, and dense after a far frame that claimed at the yield. Their rays enter up to
+// PT_FAR_BRICKS bricks and all go on after the frame's rays. Session 59's far prefetch (every
+// pose sparse after a busy frame, 64 bricks a ray, marches that ended with the frame's rays once
+// all were taken, after any idle frame): random-spheres' forward walk's exit frame 18.7-33.3 ms
+// against 33.9-34.9 without, its 1% low 11-12% of its average (H200, BENCHMARKS.md, session 60).
+// Session 57's dense start: floors x1.40, over-production 11.7%.
 constexpr uint32_t PT_FAR_SPARSE = 8, PT_FAR_DIV = 64;
+
+// The far prefetch starts only after a frame whose next-frame prefetch rays entered fewer than
+// this many bricks each on average (PT_PREFETCH_ENTERED; or whose rays all ended before its
+// prefetch took any, as on the CPU), and goes on while frames are idle (a far frame's next-frame
+// rays pass the wall bricks it is producing: 25 a ray in random-spheres' forward walk): a view
+// closed in front of the camera (inside a sphere about 1, random-spheres' open views 8-32 at 1500 x
+// 1000), where the frame's own rays end early. An open view's frame (a floor frame, a walk frame
+// with nothing to wait for) has its own rays' time to fill, and a far frame's marches made it
+// later: far frames after any idle frame cost the floors x1.26, forest's 4.05 -> 7.35 ms; after one
+// under 16 bricks a ray x1.105 (H200, 25 pt cells, BENCHMARKS.md, session 60).
+constexpr uint32_t PT_FAR_DEPTH = 4;
 
 struct PrefetchPlan {
   uint32_t stride = 0, poses = 1;
+  uint32_t farStride = 0;  // the later poses' (a far prefetch)
 };
 
 inline PrefetchPlan prefetchPlanAfter(uint32_t stride, uint32_t farPoses, PrefetchYield last,
                                       uint32_t lastPoses) {
-  if (stride == 0 || farPoses <= 1 || !last.idle) return {prefetchStrideAfter(stride, last), 1};
+  const uint32_t next = prefetchStrideAfter(stride, last);
+  const bool open = lastPoses == 1 && last.nearRays != 0 &&
+                    uint64_t{last.entered} >= uint64_t{last.nearRays} * PT_FAR_DEPTH;
+  if (stride == 0 || farPoses <= 1 || !last.idle || open) return {next, 1};
   const bool dense = lastPoses > 1 && last.rays != 0 && prefetchYielded(last);
-  return {dense ? stride : stride * PT_FAR_SPARSE, farPoses};
+  return {stride, farPoses, dense ? stride : stride * PT_FAR_SPARSE};
+}
+
+inline PrefetchGrid prefetchGrid(const FrameSetup& f, uint32_t stride) {
+  PrefetchGrid g;
+  if (stride == 0) return g;
+  g.stride = stride;
+  g.columns = (static_cast<uint32_t>(f.width) + stride - 1) / stride;
+  g.rows = (static_cast<uint32_t>(f.height) + stride - 1) / stride;
+  uint32_t step = static_cast<uint32_t>(0.618 * g.rows) | 1u;
+  while (std::gcd(step, g.rows) != 1) step += 2;
+  g.rowStep = step % g.rows;
+  return g;
 }
 
 // A frame's prefetch (none: stride 0, a tile, a cold cache, no frame just before it, or one from
@@ -866,13 +926,8 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
       previous->width != f.width || previous->height != f.height || sameView(*previous, f))
     return;  // a still camera: the next frame needs the bricks this frame's rays leave resident
   ctx.prefetchFrame = predictNextFrame(*previous, f);
-  ctx.prefetchStride = stride;
-  uint32_t columns = (static_cast<uint32_t>(f.width) + stride - 1) / stride;
-  uint32_t rows = (static_cast<uint32_t>(f.height) + stride - 1) / stride;
-  uint32_t step = static_cast<uint32_t>(0.618 * rows) | 1u;
-  while (std::gcd(step, rows) != 1) step += 2;
-  ctx.prefetchColumns = columns;
-  ctx.prefetchRowStep = step % rows;
+  ctx.nearGrid = prefetchGrid(f, stride);
+  ctx.farGrid = prefetchGrid(f, plan.farStride);
   // The poses: the same step and turn again and again (predictNextFrame).
   const uint32_t poses = std::min(plan.poses, PT_FAR_MAX_POSES);
   FrameSetup before = f, pose = ctx.prefetchFrame;
@@ -883,7 +938,7 @@ inline void setPrefetch(PtContext& ctx, const FrameSetup& f, const FrameSetup* p
     pose = after;
   }
   ctx.prefetchPoses = poses;
-  ctx.prefetchItems = columns * rows * poses;
+  ctx.prefetchItems = ctx.nearGrid.items() + ctx.farGrid.items() * (poses - 1);
   ctx.farClaims = static_cast<uint32_t>(f.pixelCount()) / PT_FAR_DIV;
 }
 

@@ -135,8 +135,10 @@ class PtCpu final : public SpFrameCpu {
     uint32_t claimPrefetch() const { return claimPrefetchItems(ctx); }
     void prefetch(uint32_t first) const {
       timed(TaskKind::Prefetch, [&] {
+        uint32_t entered = 0;
         for (uint32_t i = first; i < first + PT_BATCH && i < ctx.prefetchItems; ++i)
-          prefetchRay(ctx, pool, i);
+          entered += prefetchRay(ctx, pool, i);
+        if (entered != 0) atomicAdd32(ctx.counter(PT_PREFETCH_ENTERED), entered);
       });
     }
     void idle() const { spinPause(); }

@@ -12,9 +12,10 @@
 
 namespace gvdp::detail {
 
-inline PrefetchYield addPtStats(const uint32_t* c, uint32_t prefetchItems, FrameStats& stats) {
+inline PrefetchYield addPtStats(const uint32_t* c, uint32_t prefetchItems, uint32_t nearItems,
+                                FrameStats& stats) {
   auto counter = [&](PtCounter k) { return c[static_cast<size_t>(k) * PT_COUNTER_STRIDE]; };
-  PrefetchYield prefetch = prefetchYield(c, prefetchItems);
+  PrefetchYield prefetch = prefetchYield(c, prefetchItems, nearItems);
   stats.launches = uint64_t{counter(PT_PRODUCTIONS)} + counter(PT_RENDER_TASKS);
   stats.relaunchedRays = counter(PT_RELAUNCHED);
   stats.longestWaitList = counter(PT_LONGEST_LIST);
@@ -23,6 +24,7 @@ inline PrefetchYield addPtStats(const uint32_t* c, uint32_t prefetchItems, Frame
   stats.prefetchClaims = prefetch.claims;
   stats.prefetchRays = prefetch.rays;
   stats.prefetchItems = prefetchItems;
+  stats.prefetchEntered = prefetch.entered;
   stats.unfinishedPixels = std::max<int64_t>(stats.unfinishedPixels, counter(PT_LIVE_RAYS));
   return prefetch;
 }
@@ -39,11 +41,12 @@ class PrefetchHistory {
   }
   void started(const PtContext& ctx) {
     items_ = ctx.prefetchItems;
+    nearItems_ = ctx.prefetchItems != 0 ? ctx.nearGrid.items() : 0u;
     poses_ = ctx.prefetchPoses;
   }
   // The frame's pt statistics from its counters `c` (addPtStats).
   void ended(const uint32_t* c, FrameStats& stats) {
-    last_ = addPtStats(c, items_, stats);
+    last_ = addPtStats(c, items_, nearItems_, stats);
     lastPoses_ = poses_;
   }
 
@@ -51,7 +54,7 @@ class PrefetchHistory {
   uint32_t stride_, farPoses_;
   PrefetchYield last_;
   uint32_t lastPoses_ = 1;
-  uint32_t items_ = 0, poses_ = 1;  // the frame's, from its start to its end
+  uint32_t items_ = 0, nearItems_ = 0, poses_ = 1;  // the frame's, from its start to its end
 };
 
 }  // namespace gvdp::detail

@@ -486,8 +486,9 @@ struct WarpWorker {
   __device__ __forceinline__ void prefetch(uint32_t first) {
     begin(TaskKind::Prefetch);
     uint32_t item = first + static_cast<uint32_t>(lane);
-    if (item < ctx.prefetchItems) prefetchRay(ctx, pool, item);
-    __syncwarp();
+    const uint32_t entered = item < ctx.prefetchItems ? prefetchRay(ctx, pool, item) : 0u;
+    const uint32_t sum = __reduce_add_sync(0xffffffffu, entered);
+    if (lane == 0 && sum != 0) atomicAdd32(ctx.counter(PT_PREFETCH_ENTERED), sum);
     worked();
   }
   __device__ void idle() {
