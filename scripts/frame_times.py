@@ -3,15 +3,20 @@
 binaries, interleaved run by run (binary A, B, ..., then A again), read from stats.json. A line a
 run: frame 0 (from an empty cache) with its spike flag and longest wait list (pt on the GPU), the
 later frames' mean and slowest (which one), their over-production (bricks produced and never
-sampled) and an md5 of the run's images; with --list, every frame's ms too. Then a line a binary:
+sampled) and an md5 of the run's images; with --list, every frame's ms too; with --table, a table
+of stats.json fields a frame (those of --span). Then a line a binary:
 the medians and ranges over its runs, and whether every run of every binary rendered the same
 images (the schedulers' and the optimisations' rule: an image that changes is a bug). The tool
-sessions 57-59 rebuilt by hand for the sphere walks' exit frames and perlin's frame 0.
+sessions 57-60 rebuilt by hand for the sphere walks' exit frames and perlin's frame 0, and the
+tables session 60 printed of the far prefetch's frames, e.g.
+  --table ms,bricks_requested,prefetch_rays,prefetch_claims,relaunched_rays,spike --span 8-19
 
 Usage: scripts/frame_times.py [--runs N] [--scene S] [--movement M] [--frames N] [--list]
+                              [--table FIELD,...] [--span A-B]
                               [--scheduler S] [--backend B] [--size WxH] [LABEL=]BIN...
 A binary without a label is named by its folder, as scripts/frame_idle.py names them. Bad
-arguments, or a binary that is not there, are a one-line error with exit status 2; a run that
+arguments, a binary that is not there or a --table field stats.json does not have, are a
+one-line error with exit status 2; a run that
 fails is a line naming it, and the exit status is then 1; so are images that differ.
 """
 import argparse
@@ -42,6 +47,32 @@ def run_line(frames):
             "unfinished": sum(f["unfinished_pixels"] for f in frames)}
 
 
+def span_of(text, frames):
+    """The frames a table shows: 'A-B' (both in the walk, A <= B), or all of them."""
+    if not text:
+        return 0, frames - 1
+    parts = text.split("-")
+    if len(parts) != 2 or not all(p.isdigit() for p in parts):
+        fail(f"bad --span '{text}' (expected A-B, frame numbers)")
+    a, b = int(parts[0]), int(parts[1])
+    if a > b or b >= frames:
+        fail(f"bad --span '{text}' (expected A <= B < --frames {frames})")
+    return a, b
+
+
+def table(frames, fields, first, last):
+    """Lines of a table: a frame a row, its index and `fields` from stats.json."""
+    names = ["frame", *fields]
+    width = [max(8, len(n)) for n in names]
+
+    def cell(v):
+        return f"{v:.2f}" if isinstance(v, float) else str(int(v))
+
+    rows = [names] + [[cell(f["index"]), *(cell(f[k]) for k in fields)]
+                      for f in frames if first <= f["index"] <= last]
+    return ["  " + " ".join(c.rjust(w) for c, w in zip(r, width)) for r in rows]
+
+
 def images_md5(folder):
     h = hashlib.md5()
     for name in sorted(os.listdir(folder)):
@@ -57,9 +88,16 @@ def main():
     ap.add_argument("--scene", default="aligned-spheres")
     ap.add_argument("--frames", type=int, default=34, help="frames of the walk (34)")
     ap.add_argument("--list", action="store_true", help="every frame's ms on each run's line")
+    ap.add_argument("--table", default="", help="stats.json fields (comma-separated): a table "
+                    "of them a frame after each run's line")
+    ap.add_argument("--span", default="", help="A-B: the frames the table shows (default: all)")
     a = ap.parse_args()
     if a.frames < 1:
         fail(f"bad --frames {a.frames} (expected N >= 1)")
+    fields = [k for k in a.table.split(",") if k] if a.table else []
+    if a.table and (not fields or len(fields) != len(a.table.split(","))):
+        fail(f"bad --table '{a.table}' (expected stats.json fields, comma-separated)")
+    first, last = span_of(a.span, a.frames)
     size, bins = common_values(a)
     os.environ.setdefault("GVDP_WATCHDOG_S", "60")
     status = 0
@@ -82,6 +120,10 @@ def main():
                     continue
                 with open(os.path.join(out, "stats.json")) as f:
                     frames = json.load(f)["frames"]
+                for k in fields:
+                    if k not in frames[0]:
+                        fail(f"bad --table field '{k}' (stats.json's frames have: "
+                             f"{', '.join(sorted(frames[0]))})")
                 v = run_line(frames)
                 v["md5"] = images_md5(out)
                 md5s.add(v["md5"])
@@ -92,6 +134,8 @@ def main():
                       f"then mean {v['mean']:.2f} ms, slowest {v['max']:.2f} ms (frame "
                       f"{v['max_at']}), over-production {v['over']:.1f}%, unfinished "
                       f"{v['unfinished']}, images {v['md5']}{listed}", flush=True)
+                if fields:
+                    print("\n".join(table(frames, fields, first, last)), flush=True)
     for label, _ in bins:
         v = got[label]
         if not v:

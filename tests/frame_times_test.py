@@ -31,6 +31,9 @@ check(v['mean'] == 3.0 and v['max'] == 6.0 and v['max_at'] == 2, f'later frames:
 check(abs(v['over'] - 100.0 * 20 / 210) < 1e-9, f'over-production: {v}')
 v = ft.run_line([frame(0, 5.0)])
 check(v['mean'] == 5.0 and not v['spike'] and v['longest'] == 0, f'one frame, no pt stats: {v}')
+rows = ft.table([frame(i, 1.5 * i, requested=7 * i) for i in range(5)], ['ms', 'requested'], 1, 3)
+check([r.split() for r in rows] == [['frame', 'ms', 'requested'], ['1', '1.50', '7'],
+                                    ['2', '3.00', '14'], ['3', '4.50', '21']], f'table: {rows}')
 
 r = run('--backend', 'cpu', '--runs', '2', '--scene', 'perlin', '--movement', 'forward',
         '--frames', '3', '--size', '48x32', '--list', f'a={gvdp}', f'b={gvdp}')
@@ -50,13 +53,28 @@ for x in runs:
 check(any(x.startswith('perlin forward a: 2 runs, frame 0 ') for x in lines), f'summary: {lines}')
 check(lines[-1].startswith('images: the same in every run'), f'images: {lines[-1]}')
 
+r = run('--backend', 'cpu', '--runs', '1', '--scene', 'perlin', '--movement', 'forward',
+        '--frames', '3', '--size', '48x32', '--table', 'ms,bricks_requested', '--span', '1-2',
+        f'a={gvdp}')
+lines = r.stdout.splitlines()
+check(r.returncode == 0 and len(lines) == 6 and lines[1].split() == ['frame', 'ms',
+                                                                     'bricks_requested'] and
+      [x.split()[0] for x in lines[2:4]] == ['1', '2'], f'a table of frames 1-2: {lines}')
+
 for args, what in ((['--runs', '0', gvdp], '--runs 0'), (['--frames', '0', gvdp], '--frames 0'),
                    (['/no/such/gvdp'], '/no/such/gvdp'),
                    ([f'x={gvdp}', f'x={gvdp}'], 'one label'),
-                   (['--size', '12', gvdp], "--size '12'")):
+                   (['--size', '12', gvdp], "--size '12'"),
+                   (['--span', '3-1', gvdp], "--span '3-1'"),
+                   (['--frames', '4', '--span', '2-4', gvdp], "--span '2-4'"),
+                   (['--table', 'ms,,x', gvdp], "--table 'ms,,x'")):
     r = run(*args)
     check(r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and what in r.stderr and
           r.stderr.startswith('frame_times: '), f'{args}: exit {r.returncode}, stderr {r.stderr!r}')
+r = run('--backend', 'cpu', '--runs', '1', '--scene', 'perlin', '--frames', '1', '--size',
+        '48x32', '--table', 'ms,no_such_field', f'x={gvdp}')
+check(r.returncode == 2 and "'no_such_field'" in r.stderr and 'bricks_requested' in r.stderr and
+      len(r.stderr.strip().splitlines()) == 1, f'an unknown field: {r.returncode} {r.stderr!r}')
 r = run('--backend', 'cpu', '--runs', '1', '--scene', 'nosuch', '--frames', '1', f'x={gvdp}')
 check(r.returncode == 1 and 'nosuch walkthrough x run 1: failed' in r.stdout and
       "'nosuch'" in r.stdout, f'a failing run: exit {r.returncode}, {r.stdout!r}')

@@ -388,9 +388,10 @@ constexpr uint32_t PT_FAR_BRICKS = 256;
 // x0.94-0.96 in all three; 2 levels x1.007, 3 x1.009 (BENCHMARKS.md, session 55).
 constexpr int PT_PREFETCH_STAND_IN_LEVELS = 1;
 
-// Prefetch ray `item` (< prefetchItems): the predicted next frame's ray through the centre of its
-// prefetchStride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: stand-ins at
-// most PT_PREFETCH_STAND_IN_LEVELS above, no waiting, no timestamp, nothing composited).
+// Prefetch ray `item` (< prefetchItems): a predicted frame's ray (the next frame's: nearGrid's
+// items first; a far prefetch's later poses: farGrid's each) through the centre of its grid's
+// stride^2 pixels, marched from its start as a lookahead (cache/lookahead.h: stand-ins at most
+// PT_PREFETCH_STAND_IN_LEVELS above, no waiting, no timestamp, nothing composited).
 // Returns the bricks it entered, 0 for a later pose's (PT_PREFETCH_ENTERED counts the others).
 template <class Pool>
 GVDP_HD uint32_t prefetchRay(const PtContext& ctx, const Pool& pool, uint32_t item) {
