@@ -41,7 +41,7 @@ class PrefetchHistory {
   }
   void started(const PtContext& ctx) {
     items_ = ctx.prefetchItems;
-    nearItems_ = ctx.prefetchItems != 0 ? ctx.nearGrid.items() : 0u;
+    nearItems_ = ctx.nearGrid.items();  // (no prefetch: prefetchYield's rays are 0 anyway)
     poses_ = ctx.prefetchPoses;
   }
   // The frame's pt statistics from its counters `c` (addPtStats).
