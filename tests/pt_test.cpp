@@ -173,7 +173,7 @@ TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
   }
 }
 
-// The far prefetch (GVDP_PT_FAR=8, pt_body.h: prefetchPlanAfter): random-spheres' forward walk
+// The far prefetch (GVDP_PT_FAR=8, pt_prefetch.h: prefetchPlanAfter): random-spheres' forward walk
 // spends frames inside a sphere, whose rays wait on nothing; their prefetch marches the frames
 // ahead, so the frame where the camera comes out requests fewer bricks. The images stay the same.
 TEST(PtCpu, FarPrefetchChangesWhatIsProducedNeverTheImage) {

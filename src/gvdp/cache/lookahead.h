@@ -12,8 +12,8 @@
 // is a march - without one, a lookahead through resident bricks marched the rest of the ray a
 // second time: pt 1.5x slower on perlin, H100), when the copy leaves the last level, or when
 // OnMiss::goesOn() says so (pt's prefetch past the frame's rays). A brick it meets MISSING goes
-// to OnMiss (which may decline: no task id left, pt_body.h). It stamps no timestamp: a brick only
-// the lookahead read was not sampled (over-production, cache_view.h).
+// to OnMiss (which may decline: no task id left, pt_tasks.h: StartAhead). It stamps no timestamp: a
+// brick only the lookahead read was not sampled (over-production, cache_view.h).
 #pragma once
 
 #include "gvdp/cache/cached_access.h"

@@ -8,7 +8,7 @@
 #include "gvdp/cache/lru_order.h"
 #include "gvdp/render/march.h"
 #include "gvdp/sched/dp/dp.h"
-#include "gvdp/sched/pt/pt_body.h"
+#include "gvdp/sched/pt/pt_context.h"
 #include "gvdp/sched/tile_order.h"
 
 namespace gvdp::detail {

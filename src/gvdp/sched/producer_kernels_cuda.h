@@ -9,7 +9,7 @@
 #include "gvdp/sched/graph/graph_frame.h"
 #include "gvdp/sched/importance.h"
 #include "gvdp/sched/producer_kernels.h"
-#include "gvdp/sched/pt/pt_body.h"
+#include "gvdp/sched/pt/pt_context.h"
 
 namespace gvdp::detail {
 

@@ -67,9 +67,9 @@ constexpr uint32_t DEFAULT_LOOKAHEAD = 2;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
 constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 16;  // pt: see ptTailLookahead
 
-// pt's idle-time prefetch (pt_body.h): a ray of the predicted next frame per N x N pixels, 0: off.
-// On by default: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 made pt's 25 cells faster on
-// the whole, never changing an image, and 2 was no better.
+// pt's idle-time prefetch (pt_prefetch.h): a ray of the predicted next frame per N x N pixels, 0:
+// off. On by default: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 made pt's 25 cells faster
+// on the whole, never changing an image, and 2 was no better.
 constexpr uint32_t DEFAULT_PREFETCH = 4;
 constexpr uint32_t MAX_PREFETCH = 64;
 

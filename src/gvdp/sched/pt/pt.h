@@ -16,8 +16,8 @@ namespace gvdp::detail {
 inline constexpr uint32_t PT_PRODUCER_SHARE_DEFAULT = 2;
 uint32_t ptProducerShareFromEnvironment();
 
-// pt's far prefetch (pt_body.h: prefetchPlanAfter): the poses GVDP_PT_FAR=N says, 0 (off) unless
-// set. Throws InputError naming any value but an integer 0..PT_FAR_MAX_POSES.
+// pt's far prefetch (pt_prefetch.h: prefetchPlanAfter): the poses GVDP_PT_FAR=N says, 0 (off)
+// unless set. Throws InputError naming any value but an integer 0..PT_FAR_MAX_POSES.
 inline constexpr uint32_t PT_FAR_MAX_POSES = 16;
 uint32_t ptFarPosesFromEnvironment();
 

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "gvdp/sched/pt/pt_body.h"
+#include "gvdp/sched/pt/pt_prefetch.h"
 #include "gvdp/sched/scheduler.h"
 
 namespace gvdp::detail {
