@@ -18,9 +18,11 @@ import argparse
 import os
 import re
 import shlex
-import struct
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sass_lines import sections  # noqa: E402  (the ELF section reader, written once)
 
 SKIPPED = (".strtab", ".shstrtab", ".symtab", ".nv.rel", ".rela", ".rel")  # names, relocations
 
@@ -77,23 +79,15 @@ def save(folder, build):
     print(f"saved {len(commands)} cubins in {folder}")
 
 
-def sections(path):
-    """(name, bytes) of each section of an ELF64 file (empty bytes for NOBITS)."""
+def section_bytes(path):
+    """{name: bytes} of each section of a cubin (sass_lines.sections; empty for NOBITS)."""
     try:
         data = open(path, "rb").read()
     except OSError as e:
         fail(f"cannot read '{path}': {e.strerror}")
     if data[:4] != b"\x7fELF" or data[4] != 2:
         fail(f"'{path}' is not a 64-bit ELF file")
-    shoff = struct.unpack_from("<Q", data, 0x28)[0]
-    entsize, count, names = struct.unpack_from("<HHH", data, 0x3A)
-    headers = [struct.unpack_from("<IIQQQQIIQQ", data, shoff + i * entsize) for i in range(count)]
-    table = headers[names][4]
-    result = []
-    for h in headers:
-        name = data[table + h[0]:data.index(b"\0", table + h[0])].decode()
-        result.append((name, b"" if h[1] == 8 else data[h[4]:h[4] + h[5]]))
-    return result
+    return {name: data[offset:offset + size] for name, (offset, size) in sections(data).items()}
 
 
 def unhashed(name):
@@ -106,8 +100,8 @@ def unhashed(name):
 
 def differing(before, after):
     """Names of the sections whose code or data differ (or that only one side has)."""
-    a = {unhashed(n): b for n, b in sections(before) if not n.startswith(SKIPPED)}
-    b = {unhashed(n): d for n, d in sections(after) if not n.startswith(SKIPPED)}
+    a = {unhashed(n): b for n, b in section_bytes(before).items() if not n.startswith(SKIPPED)}
+    b = {unhashed(n): d for n, d in section_bytes(after).items() if not n.startswith(SKIPPED)}
     return sorted(n for n in a.keys() | b.keys() if a.get(n) != b.get(n))
 
 

@@ -18,6 +18,8 @@ import sys
 
 
 def sections(data):
+    """Each section of an ELF64 file (a cubin) by name: (offset, size) of its bytes in the file,
+    size 0 for one that has none there (NOBITS). scripts/same_cubins.py reads cubins with it too."""
     shoff, = struct.unpack_from('<Q', data, 0x28)
     shentsize, shnum, shstrndx = struct.unpack_from('<HHH', data, 0x3a)
     raw = [struct.unpack_from('<IIQQQQ', data, shoff + i * shentsize) for i in range(shnum)]
@@ -26,7 +28,7 @@ def sections(data):
     def name(o):
         return data[names + o:data.index(b'\0', names + o)].decode()
 
-    return {name(r[0]): (r[4], r[5]) for r in raw}
+    return {name(r[0]): (r[4], 0 if r[1] == 8 else r[5]) for r in raw}
 
 
 def uleb(data, p):
