@@ -161,7 +161,10 @@ inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {
 // pose sparse after a busy frame, 64 bricks a ray, marches that ended with the frame's rays once
 // all were taken, after any idle frame): random-spheres' forward walk's exit frame 18.7-33.3 ms
 // against 33.9-34.9 without, its 1% low 11-12% of its average (H200, BENCHMARKS.md, session 60).
-// Session 57's dense start: floors x1.40, over-production 11.7%.
+// Session 57's dense start: floors x1.40, over-production 11.7%. PT_FAR_DIV balances the far
+// frames against the exit frame: random-spheres forward's slowest frame 12.8 / 11.7 / 10.3 /
+// 14.6 / 17.1 / 18.8 ms with 32 / 48 / 64 / 96 / 128 / 192 (the cap's far frames slower below
+// 64, the exit frame above; H200, BENCHMARKS.md, session 62).
 constexpr uint32_t PT_FAR_SPARSE = 8, PT_FAR_DIV = 64;
 
 // The far prefetch starts only after a frame whose next-frame prefetch rays entered fewer than
