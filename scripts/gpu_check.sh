@@ -7,7 +7,7 @@
 #      degraded frames, --tiles off), the large one with --budget-ms 0 ("late": every claim past
 #      the deadline, rays never waiting) and forest backward with 600 bricks ("tiled": frames
 #      rendered as tiles, memcheck and racecheck only) and, for pt, random-spheres forward over
-#      20 frames with GVDP_PT_FAR=8 ("far": its idle frames inside a sphere march a far
+#      20 frames with --far-prefetch 8 ("far": its idle frames inside a sphere march a far
 #      prefetch that holds the frame open; memcheck and racecheck only). memcheck runs on the default build; initcheck, racecheck and synccheck
 #      on the nocdp build: with CDP in the binary they instrument no kernel ("CUDA Dynamic
 #      Parallelism is not supported by the selected tool"), and initcheck then reports every
@@ -86,11 +86,11 @@ sanitize() {
   args+=("${extra[@]}")
   # pt with its lookahead and prefetch on: the protocol with every kind of claim in it (the second
   # frame prefetches for a third, whose prefetch is as dense as the second's yield asks).
-  local frames=2 far=0
+  local frames=2
   [ "$sched" = pt ] && args+=(--lookahead 4 --prefetch 2) && frames=3
-  [ "$pool" = far ] && frames=20 far=8
+  [ "$pool" = far ] && frames=20 && args+=(--far-prefetch 8)
   local log=/tmp/sanitize.log
-  GVDP_PT_FAR=$far GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
+  GVDP_GRAPH_LOOP=$graph_loop timeout 240 compute-sanitizer --tool "$tool" --error-exitcode 9 --print-limit 20 "$bin" render \
     --backend cuda --scheduler "$sched" --scene "$scene" --movement "$movement" --width 160 \
     --height 100 --frames "$frames" "${args[@]}" --out "/tmp/sanitize_$sched" >"$log" 2>&1
   local rc=$?

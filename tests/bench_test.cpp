@@ -74,6 +74,11 @@ TEST(Bench, ResultsJsonHasTheSchemaAndSpeedupsAgainstSp) {
   nlohmann::json j = nlohmann::json::parse(benchJson(r));
   for (const char* key : {"device", "backend", "width", "height", "frames", "cells"})
     EXPECT_TRUE(j.contains(key)) << key;
+  // pt's settings, as the options gave them (the defaults here).
+  EXPECT_EQ(j["lookahead"], DEFAULT_LOOKAHEAD);
+  EXPECT_EQ(j["tail_lookahead"], DEFAULT_TAIL_LOOKAHEAD);
+  EXPECT_EQ(j["prefetch"], DEFAULT_PREFETCH);
+  EXPECT_EQ(j["far_prefetch"], 0);
   ASSERT_EQ(j["cells"].size(), 4u);
   for (const auto& c : j["cells"]) {
     for (const char* key : {"scene", "movement", "scheduler", "avg_fps", "low1_fps", "median_ms",

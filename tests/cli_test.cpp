@@ -397,22 +397,31 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
                    "bad GVDP_PT_PRODUCER_SHARE 'two' (expected 0..4096; 0: off)");
 }
 
-// GVDP_PT_FAR turns on pt's far prefetch (unset or 0: off); anything but an integer 0..16 is an
-// error, on either backend.
-TEST(Cli, PtFarPrefetchEnvironmentIsChecked) {
-  test::EnvRestore restore("GVDP_PT_FAR");
-  for (const char* bad : {"eight", "-1", "17", "8x"}) {
-    setenv("GVDP_PT_FAR", bad, 1);
-    EXPECT_THROW(ptFarPosesFromEnvironment(), InputError) << bad;
-  }
-  setenv("GVDP_PT_FAR", "8", 1);
-  EXPECT_EQ(ptFarPosesFromEnvironment(), 8u);
-  unsetenv("GVDP_PT_FAR");
-  EXPECT_EQ(ptFarPosesFromEnvironment(), 0u);
-  setenv("GVDP_PT_FAR", "eight", 1);
-  const std::string out = " --out " + test::tempDir("cli_far");
-  expectInputError("render --backend cpu --scheduler pt" + TINY + out,
-                   "bad GVDP_PT_FAR 'eight' (expected 0..16 poses; 0: off)");
+// --far-prefetch N turns on pt's far prefetch (0: off, the default): 0..16 predicted frames, pt's
+// only, and with the prefetch it extends; stats.json and the bench's JSON record it.
+TEST(Cli, FarPrefetchIsCheckedAndRecorded) {
+  const std::string dir = test::tempDir("cli_far"), out = " --out " + dir;
+  expectInputError("render --backend cpu --scheduler pt --far-prefetch 17" + TINY + out,
+                   "bad --far-prefetch 17 (expected 0..16 predicted frames; 0: off)");
+  expectInputError("render --backend cpu --scheduler pt --far-prefetch -1" + TINY + out,
+                   "bad --far-prefetch -1");
+  expectInputError("render --backend cpu --scheduler pt --far-prefetch eight" + TINY + out,
+                   "--far-prefetch");
+  expectInputError("bench" + TINY_BENCH + " --far-prefetch 99" + out, "bad --far-prefetch 99");
+  for (const char* scheduler : {"sp", "dp", "direct"})
+    expectInputError(
+        std::string("render --backend cpu --far-prefetch 8 --scheduler ") + scheduler + TINY + out,
+        std::string("--far-prefetch 8 is used by scheduler pt only, not by ") + scheduler);
+  expectInputError("render --backend cpu --scheduler pt --prefetch 0 --far-prefetch 8" + TINY + out,
+                   "--far-prefetch 8 needs pt's prefetch, which --prefetch 0 turns off");
+  test::CommandResult r =
+      test::runGvdp("render --backend cpu --scheduler pt --far-prefetch 8" + TINY + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readStats(dir)["far_prefetch"], 8);
+  r = test::runGvdp("render --backend cpu --scheduler pt" + TINY + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readStats(dir)["far_prefetch"], 0);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace gvdp::detail

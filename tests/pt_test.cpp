@@ -173,16 +173,14 @@ TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
   }
 }
 
-// The far prefetch (GVDP_PT_FAR=8, pt_prefetch.h: prefetchPlanAfter): random-spheres' forward walk
-// spends frames inside a sphere, whose rays wait on nothing; their prefetch marches the frames
+// The far prefetch (--far-prefetch 8, pt_prefetch.h: prefetchPlanAfter): random-spheres' forward
+// walk spends frames inside a sphere, whose rays wait on nothing; their prefetch marches the frames
 // ahead, so the frame where the camera comes out requests fewer bricks. The images stay the same.
-TEST(PtCpu, FarPrefetchChangesWhatIsProducedNeverTheImage) {
-  test::EnvRestore restore("GVDP_PT_FAR");
-  unsetenv("GVDP_PT_FAR");
-  const SchedulerOptions o{Backend::Cpu, SchedulerKind::Pt};
-  Renders near = renderRun("random-spheres", o, 20, 160, 100, Movement::Forward);
-  setenv("GVDP_PT_FAR", "8", 1);
-  Renders far = renderRun("random-spheres", o, 20, 160, 100, Movement::Forward);
+void expectFarPrefetchChangesNoImage(Backend backend, int w, int h) {
+  SchedulerOptions o{backend, SchedulerKind::Pt};
+  Renders near = renderRun("random-spheres", o, 20, w, h, Movement::Forward);
+  o.farPrefetch = 8;
+  Renders far = renderRun("random-spheres", o, 20, w, h, Movement::Forward);
   uint64_t nearMost = 0, farMost = 0;
   for (int f = 0; f < 20; ++f) {
     EXPECT_EQ(near.images[f].pixels, far.images[f].pixels) << "frame " << f;
@@ -194,10 +192,14 @@ TEST(PtCpu, FarPrefetchChangesWhatIsProducedNeverTheImage) {
     }
   }
   std::printf(
-      "[ measure ] random-spheres forward pt 160x100, frames 10-19: at most %llu bricks "
-      "requested a frame, %llu with GVDP_PT_FAR=8\n",
-      static_cast<unsigned long long>(nearMost), static_cast<unsigned long long>(farMost));
+      "[ measure ] random-spheres forward pt %dx%d, frames 10-19: at most %llu bricks requested "
+      "a frame, %llu with --far-prefetch 8\n",
+      w, h, static_cast<unsigned long long>(nearMost), static_cast<unsigned long long>(farMost));
   EXPECT_LT(farMost, nearMost);
+}
+
+TEST(PtCpu, FarPrefetchChangesWhatIsProducedNeverTheImage) {
+  expectFarPrefetchChangesNoImage(Backend::Cpu, 160, 100);
 }
 
 TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
@@ -368,6 +370,13 @@ TEST(GpuPt, PrefetchChangesWhatIsProducedNeverTheImage) {
     EXPECT_GT(c.prefetched, c.unused)
         << scene << ": the next frames sampled some prefetched bricks";
   }
+}
+
+// On the GPU at 320 x 200 the far frames' marches and productions run beside each other on
+// thousands of warps (a far frame holds itself open until its rays are taken).
+TEST(GpuPt, FarPrefetchChangesWhatIsProducedNeverTheImage) {
+  GVDP_REQUIRE_GPU();
+  expectFarPrefetchChangesNoImage(Backend::Cuda, 320, 200);
 }
 
 // The prefetch predicts the next frame from the camera's last step: a still camera's next frame

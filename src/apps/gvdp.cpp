@@ -44,6 +44,14 @@ Vec3d parseVector(const std::string& text, const char* flag) {
   return v;
 }
 
+std::string farPrefetchHelp() {
+  return "pt: after a frame whose view is closed (the camera inside a sphere, a tree, a hill), "
+         "the prefetch marches the next N frames the camera's motion predicts, N 0.." +
+         std::to_string(MAX_FAR_PREFETCH) +
+         " (default 0: off; 8 moved most of random-spheres' forward exit frame into the frames "
+         "before it)";
+}
+
 // The pool's accepted sizes: 50 million bricks are 200 GB; 190000 MiB are 49.8 million bricks.
 constexpr int64_t MAX_POOL_BRICKS = 50000000;
 constexpr int64_t MAX_POOL_MB = 190000;
@@ -59,7 +67,8 @@ struct RenderFlags {
   int videoFps = 30;
   int levels = DEFAULT_LEVELS;
   int lodWidth = 0;
-  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead, tailLookahead, prefetch;
+  std::optional<int64_t> poolBricks, poolMb, pendingLaunches, lookahead, tailLookahead, prefetch,
+      farPrefetch;
   std::optional<double> budgetMs;
   float fov = DEFAULT_FOV_DEGREES;
 };
@@ -101,6 +110,7 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "motion predicts, marching a ray per N x N pixels, N 0.." +
                       std::to_string(MAX_PREFETCH) + " (default " +
                       std::to_string(DEFAULT_PREFETCH) + "; 0: off)");
+  cmd->add_option("--far-prefetch", f.farPrefetch, farPrefetchHelp());
   cmd->add_option("--budget-ms", f.budgetMs,
                   "frame-time budget: past it, rays whose brick is not ready show the nearest "
                   "resident coarser level (produced for the next frames); 0: never wait; default "
@@ -187,6 +197,9 @@ void refuseUnusedFlags(const RenderFlags& f, SchedulerKind kind) {
                    schedulerName(kind));
   GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.prefetch, "--prefetch ", f.prefetch.value_or(0),
                    " is used by scheduler pt only, not by ", schedulerName(kind));
+  GVDP_INPUT_CHECK(kind == SchedulerKind::Pt || !f.farPrefetch, "--far-prefetch ",
+                   f.farPrefetch.value_or(0), " is used by scheduler pt only, not by ",
+                   schedulerName(kind));
   GVDP_INPUT_CHECK(!direct || !f.budgetMs, "--budget-ms ", f.budgetMs.value_or(0.0),
                    " is not used by scheduler direct (it waits for no brick)");
 }
@@ -210,6 +223,16 @@ uint32_t prefetchFrom(const std::optional<int64_t>& n) {
   if (!n) return DEFAULT_PREFETCH;
   GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_PREFETCH, "bad --prefetch ", *n, " (expected 0..",
                    MAX_PREFETCH, ")");
+  return static_cast<uint32_t>(*n);
+}
+
+// --far-prefetch N, with the prefetch it extends (`prefetch`: the ray spacing, 0: off).
+uint32_t farPrefetchFrom(const std::optional<int64_t>& n, uint32_t prefetch) {
+  if (!n) return 0;
+  GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_FAR_PREFETCH, "bad --far-prefetch ", *n, " (expected 0..",
+                   MAX_FAR_PREFETCH, " predicted frames; 0: off)");
+  GVDP_INPUT_CHECK(*n <= 1 || prefetch != 0, "--far-prefetch ", *n,
+                   " needs pt's prefetch, which --prefetch 0 turns off");
   return static_cast<uint32_t>(*n);
 }
 
@@ -248,6 +271,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.tailLookahead =
       lookaheadFrom(f.tailLookahead, "--tail-lookahead", DEFAULT_TAIL_LOOKAHEAD);
   o.scheduler.prefetch = prefetchFrom(f.prefetch);
+  o.scheduler.farPrefetch = farPrefetchFrom(f.farPrefetch, o.scheduler.prefetch);
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
   o.lodWidth = f.lodWidth;
@@ -462,7 +486,7 @@ struct BenchFlags {
   std::string mesh;
   float lattice = 0.0f;
   std::optional<int> frames, warmup, width, height;
-  std::optional<int64_t> poolBricks, lookahead, tailLookahead, prefetch;
+  std::optional<int64_t> poolBricks, lookahead, tailLookahead, prefetch, farPrefetch;
   std::optional<double> budgetMs;
   bool scale = false;
 };
@@ -544,6 +568,7 @@ BenchOptions benchOptions(const BenchFlags& f) {
   o.lookahead = lookaheadFrom(f.lookahead);
   o.tailLookahead = lookaheadFrom(f.tailLookahead, "--tail-lookahead", DEFAULT_TAIL_LOOKAHEAD);
   o.prefetch = prefetchFrom(f.prefetch);
+  o.farPrefetch = farPrefetchFrom(f.farPrefetch, o.prefetch);
   o.budgetMs = budgetFrom(f.budgetMs);
   o.scale = f.scale;
   validate(o);
@@ -747,6 +772,7 @@ int run(int argc, char** argv) {
   benchCmd->add_option("--prefetch", bench.prefetch,
                        "pt's idle-time prefetch, a ray per N x N pixels (default " +
                            std::to_string(DEFAULT_PREFETCH) + "; 0: off; see render --prefetch)");
+  benchCmd->add_option("--far-prefetch", bench.farPrefetch, farPrefetchHelp());
   benchCmd->add_option("--budget-ms", bench.budgetMs,
                        "frame-time budget (see render --budget-ms; default off)");
   benchCmd->add_flag("--scale", bench.scale, "also dp frame time at 4 resolutions, first scene");

@@ -34,6 +34,7 @@ SequenceOptions cellSequence(const BenchOptions& o, const std::string& scene, Mo
   so.lookahead = o.lookahead;
   so.tailLookahead = o.tailLookahead;
   so.prefetch = o.prefetch;
+  so.farPrefetch = o.farPrefetch;
   so.budgetMs = o.budgetMs;
   s.scheduler = resolvedOptions(so);
   return s;
@@ -146,6 +147,9 @@ BenchResults runBench(const BenchOptions& o,
   r.warmup = o.warmup;
   r.budgetMs = o.budgetMs;
   r.prefetch = o.prefetch;
+  r.lookahead = o.lookahead;
+  r.tailLookahead = o.tailLookahead;
+  r.farPrefetch = o.farPrefetch;
   int total = static_cast<int>(o.scenes.size() * o.movements.size() * o.schedulers.size());
   int done = 0;
   for (const std::string& scene : o.scenes)
@@ -233,9 +237,19 @@ std::string benchJson(const BenchResults& r) {
                      {"height", p.height},
                      {"median_ms", p.medianMs},
                      {"avg_fps", p.avgFps}});
-  return nlohmann::json{{"device", r.device},     {"backend", r.backend}, {"budget_ms", r.budgetMs},
-                        {"prefetch", r.prefetch}, {"width", r.width},     {"height", r.height},
-                        {"frames", r.frames},     {"warmup", r.warmup},   {"cells", cells},
+  // lookahead, tail_lookahead, prefetch and far_prefetch: pt's settings, its cells' only.
+  return nlohmann::json{{"device", r.device},
+                        {"backend", r.backend},
+                        {"budget_ms", r.budgetMs},
+                        {"lookahead", r.lookahead},
+                        {"tail_lookahead", r.tailLookahead},
+                        {"prefetch", r.prefetch},
+                        {"far_prefetch", r.farPrefetch},
+                        {"width", r.width},
+                        {"height", r.height},
+                        {"frames", r.frames},
+                        {"warmup", r.warmup},
+                        {"cells", cells},
                         {"scale", scale}}
       .dump(1);
 }

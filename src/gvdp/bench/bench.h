@@ -26,6 +26,7 @@ struct BenchOptions {
   uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt's
   uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt's, in a frame's tail
   uint32_t prefetch = DEFAULT_PREFETCH;             // pt's
+  uint32_t farPrefetch = 0;                         // pt's: predicted frames (0: off)
   double budgetMs = NO_BUDGET;                      // every cell's frame-time budget
   bool scale = false;  // frame time against resolution for dp on the first scene
 };
@@ -69,8 +70,8 @@ struct BenchScalePoint {
 struct BenchResults {
   std::string device, backend;
   int width, height, frames, warmup;
-  double budgetMs;    // NO_BUDGET: exact frames
-  uint32_t prefetch;  // pt's (0: off)
+  double budgetMs;                                           // NO_BUDGET: exact frames
+  uint32_t lookahead, tailLookahead, prefetch, farPrefetch;  // pt's (prefetch 0: off)
   std::vector<BenchCell> cells;
   std::vector<BenchScalePoint> scale;
 };

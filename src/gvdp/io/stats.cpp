@@ -39,6 +39,7 @@ std::string statsJson(const SequenceOptions& o, const std::vector<FrameStats>& f
   if (used.kind == SchedulerKind::Pt) j["lookahead"] = used.lookahead;
   if (used.kind == SchedulerKind::Pt) j["tail_lookahead"] = ptTailLookahead(used);
   if (used.kind == SchedulerKind::Pt) j["prefetch"] = used.prefetch;
+  if (used.kind == SchedulerKind::Pt) j["far_prefetch"] = used.farPrefetch;
   if (used.budgetMs >= 0.0) j["budget_ms"] = used.budgetMs;
   j["tiles"] = o.tiles.mode == TileOptions::Mode::Auto  ? "auto"
                : o.tiles.mode == TileOptions::Mode::Off ? "off"

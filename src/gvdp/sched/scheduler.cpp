@@ -93,15 +93,6 @@ uint32_t ptProducerShareFromEnvironment() {
   return static_cast<uint32_t>(s);
 }
 
-uint32_t ptFarPosesFromEnvironment() {
-  const char* v = std::getenv("GVDP_PT_FAR");
-  if (v == nullptr || *v == '\0') return 0;
-  int64_t n = 0;
-  GVDP_INPUT_CHECK(parseInt(v, n) && n >= 0 && n <= PT_FAR_MAX_POSES, "bad GVDP_PT_FAR '", v,
-                   "' (expected 0..", PT_FAR_MAX_POSES, " poses; 0: off)");
-  return static_cast<uint32_t>(n);
-}
-
 namespace {
 std::unique_ptr<Scheduler> makeBare(const SchedulerOptions& options, ProducerKernelsPtr p) {
   requireBackend(options.backend);

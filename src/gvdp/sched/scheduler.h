@@ -73,6 +73,15 @@ constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 16;  // pt: see ptTailLookahead
 constexpr uint32_t DEFAULT_PREFETCH = 4;
 constexpr uint32_t MAX_PREFETCH = 64;
 
+// pt's far prefetch (pt_prefetch.h: prefetchPlanAfter): after an idle frame whose view is closed
+// (inside a sphere, a tree, a hill), the prefetch marches the next N frames the camera's motion
+// predicts, so that the frame where the view opens finds most of its bricks (random-spheres'
+// forward walk: its exit frame 34 -> 10 ms, the cell's 1% low 11% -> 42% of its average; H200,
+// BENCHMARKS.md, sessions 60-62). 0 (or 1: the next frame only): off, the default, since the far
+// frames cost the cells they help some FPS (those two walks x0.85 and x0.65; 25 pt cells FPS
+// x0.978, 1% lows x1.066).
+constexpr uint32_t MAX_FAR_PREFETCH = 16;
+
 // A frame-time budget (BrickCache::setBudget): NO_BUDGET (exact frames) by default.
 constexpr double NO_BUDGET = -1.0;
 constexpr double MAX_BUDGET_MS = 60000.0;
@@ -87,6 +96,7 @@ struct SchedulerOptions {
   uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt: missing bricks a stopped ray claims ahead
   uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt: at least this many in a frame's tail
   uint32_t prefetch = DEFAULT_PREFETCH;             // pt: a prefetch ray per N x N pixels (0: none)
+  uint32_t farPrefetch = 0;     // pt: predicted frames a far prefetch marches (0: off; see above)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
@@ -138,6 +148,7 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
   o.tailLookahead = o.kind == SchedulerKind::Pt ? o.tailLookahead : 0;
   o.prefetch = o.kind == SchedulerKind::Pt ? o.prefetch : 0;
+  o.farPrefetch = o.kind == SchedulerKind::Pt && o.prefetch != 0 ? o.farPrefetch : 0;
   o.budgetMs = o.kind == SchedulerKind::Direct ? NO_BUDGET : o.budgetMs;
   return o;
 }

@@ -16,10 +16,9 @@ namespace gvdp::detail {
 inline constexpr uint32_t PT_PRODUCER_SHARE_DEFAULT = 2;
 uint32_t ptProducerShareFromEnvironment();
 
-// pt's far prefetch (pt_prefetch.h: prefetchPlanAfter): the poses GVDP_PT_FAR=N says, 0 (off)
-// unless set. Throws InputError naming any value but an integer 0..PT_FAR_MAX_POSES.
-inline constexpr uint32_t PT_FAR_MAX_POSES = 16;
-uint32_t ptFarPosesFromEnvironment();
+// pt's far prefetch (pt_prefetch.h: prefetchPlanAfter): at most this many predicted frames
+// (SchedulerOptions::farPrefetch, `--far-prefetch`).
+inline constexpr uint32_t PT_FAR_MAX_POSES = MAX_FAR_PREFETCH;
 
 std::unique_ptr<Scheduler> makePtCpu(const SchedulerOptions& options, ProducerKernelsPtr producer);
 std::unique_ptr<Scheduler> makePtCuda(const SchedulerOptions& options, ProducerKernelsPtr producer);

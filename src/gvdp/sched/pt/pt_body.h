@@ -26,7 +26,7 @@
 // from a third ring (`prefetchIds`), and only while half the frame's free slots are left (the
 // lookahead's claims too): the frame's own productions never fail for them. A prefetched brick is
 // stamped for the next frame (markPrefetched), whose end counts whether a ray used it. Nothing is
-// composited. A far prefetch (GVDP_PT_FAR, off by default: prefetchPlanAfter) marches several
+// composited. A far prefetch (--far-prefetch, off by default: prefetchPlanAfter) marches several
 // predicted frames after an idle one with a closed view.
 //
 // Capacities, not guesses: a ray is in at most one place (running, in `rays`, or on one list),

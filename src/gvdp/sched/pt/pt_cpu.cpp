@@ -20,7 +20,7 @@ class PtCpu final : public SpFrameCpu {
       : SpFrameCpu(o, std::move(p)),
         lookahead_(o.lookahead),
         tailLookahead_(ptTailLookahead(o)),
-        prefetch_(o.prefetch, ptFarPosesFromEnvironment()) {}
+        prefetch_(o.prefetch, o.farPrefetch) {}
 
   MemoryReport memory() const override {
     MemoryReport m = SpFrameCpu::memory();

@@ -33,7 +33,7 @@ class PtCuda final : public SpFrameCuda {
         blocks_(cudaProducer().ptWorkerBlocks()),
         lookahead_(o.lookahead),
         tailLookahead_(ptTailLookahead(o)),
-        prefetch_(o.prefetch, ptFarPosesFromEnvironment()),
+        prefetch_(o.prefetch, o.farPrefetch),
         workers_(static_cast<uint32_t>(blocks_) * PT_WORKER_WARPS),
         stage_(size_t{workers_} * BRICK_SAMPLE_COUNT),
         productionKey_(workers_),

@@ -149,7 +149,7 @@ inline uint32_t prefetchStrideAfter(uint32_t stride, PrefetchYield last) {
   return prefetchYielded(last) ? stride : stride * PT_PREFETCH_PROBE;
 }
 
-// The far prefetch (`farPoses` > 1, GVDP_PT_FAR): after an idle frame (no ray waited) whose view
+// The far prefetch (`farPoses` > 1, --far-prefetch): after an idle frame (no ray waited) whose view
 // is closed (PT_FAR_DEPTH: inside a sphere), the prefetch marches the next farPoses frames the
 // motion predicts, the frame held open until their rays are taken (claimPrefetchItems) and their
 // marches done (StartAhead::prefetch), its bricks stamped for the last pose; at most a claim per
