@@ -200,19 +200,12 @@ TEST(Cli, FlagsACommandDoesNotUseAreRefused) {
         std::string("render --backend cpu --pending-launches 100 --scheduler ") + scheduler + TINY +
             out,
         std::string("--pending-launches 100 is used by scheduler dp only, not by ") + scheduler);
-  for (const char* scheduler : {"sp", "dp", "direct"})
-    expectInputError(
-        std::string("render --backend cpu --lookahead 4 --scheduler ") + scheduler + TINY + out,
-        std::string("--lookahead 4 is used by scheduler pt only, not by ") + scheduler);
-  for (const char* scheduler : {"sp", "dp", "direct"})
-    expectInputError(
-        std::string("render --backend cpu --tail-lookahead 8 --scheduler ") + scheduler + TINY +
-            out,
-        std::string("--tail-lookahead 8 is used by scheduler pt only, not by ") + scheduler);
-  for (const char* scheduler : {"sp", "dp", "direct"})
-    expectInputError(
-        std::string("render --backend cpu --prefetch 4 --scheduler ") + scheduler + TINY + out,
-        std::string("--prefetch 4 is used by scheduler pt only, not by ") + scheduler);
+  for (const char* flag :
+       {"--lookahead 4", "--tail-lookahead 8", "--prefetch 4", "--far-prefetch 8"})
+    for (const char* scheduler : {"sp", "dp", "direct"})
+      expectInputError(
+          std::string("render --backend cpu ") + flag + " --scheduler " + scheduler + TINY + out,
+          std::string(flag) + " is used by scheduler pt only, not by " + scheduler);
   expectInputError("render --backend cpu --scheduler direct --budget-ms 8" + TINY + out,
                    "--budget-ms 8 is not used by scheduler direct");
   expectInputError("timeline --backend cpu --frame 0 --scheduler pt --pending-launches 100 --out " +
@@ -397,8 +390,8 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
                    "bad GVDP_PT_PRODUCER_SHARE 'two' (expected 0..4096; 0: off)");
 }
 
-// --far-prefetch N turns on pt's far prefetch (0: off, the default): 0..16 predicted frames, pt's
-// only, and with the prefetch it extends; stats.json and the bench's JSON record it.
+// --far-prefetch N turns on pt's far prefetch (0: off, the default): 0..16 predicted frames, with
+// the prefetch it extends; stats.json and the bench's JSON record it.
 TEST(Cli, FarPrefetchIsCheckedAndRecorded) {
   const std::string dir = test::tempDir("cli_far"), out = " --out " + dir;
   expectInputError("render --backend cpu --scheduler pt --far-prefetch 17" + TINY + out,
@@ -408,10 +401,7 @@ TEST(Cli, FarPrefetchIsCheckedAndRecorded) {
   expectInputError("render --backend cpu --scheduler pt --far-prefetch eight" + TINY + out,
                    "--far-prefetch");
   expectInputError("bench" + TINY_BENCH + " --far-prefetch 99" + out, "bad --far-prefetch 99");
-  for (const char* scheduler : {"sp", "dp", "direct"})
-    expectInputError(
-        std::string("render --backend cpu --far-prefetch 8 --scheduler ") + scheduler + TINY + out,
-        std::string("--far-prefetch 8 is used by scheduler pt only, not by ") + scheduler);
+  // (pt's only: Cli.FlagsACommandDoesNotUseAreRefused)
   expectInputError("render --backend cpu --scheduler pt --prefetch 0 --far-prefetch 8" + TINY + out,
                    "--far-prefetch 8 needs pt's prefetch, which --prefetch 0 turns off");
   test::CommandResult r =

@@ -33,7 +33,7 @@ void validate(const RendererOptions& o) {
   GVDP_INPUT_CHECK(o.fovDegrees >= 1.0f && o.fovDegrees <= 150.0f, "bad --fov ", o.fovDegrees,
                    " (expected 1..150 degrees)");
   if (o.scheduler.kind == SchedulerKind::Graph) graphDriverFromEnvironment();
-  GVDP_INPUT_CHECK(o.scheduler.farPrefetch <= MAX_FAR_PREFETCH, "bad far prefetch ",
+  GVDP_INPUT_CHECK(o.scheduler.farPrefetch <= MAX_FAR_PREFETCH, "bad --far-prefetch ",
                    o.scheduler.farPrefetch, " (expected 0..", MAX_FAR_PREFETCH,
                    " predicted frames; 0: off)");
   if (o.scheduler.kind == SchedulerKind::Pt) ptProducerShareFromEnvironment();
