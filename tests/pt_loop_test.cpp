@@ -191,29 +191,38 @@ TEST(PtWorkerLoop, RunsUntilNoWorkIsLive) {
             (Steps{"rays", "render", "rays", "render", "idle", "finish"}));
 }
 
-// A warp's role (ptRole) with producer SMs, share 2 on 132 SMs (spike backlog 528): SMs below
-// ceil(backlog / 2) produce, the others leave tasks to them, until a warp has left the loop or
-// the frame is a spike, or while tasks wait with none in flight.
-TEST(PtRole, ProducerSmsFollowTheBacklogUntilASpike) {
-  constexpr uint32_t S = 2, SPIKE = 2 * S * 132;
+// A warp's role (ptRole) with producer SMs, share 2 on 132 SMs (spike backlog 528, 82 spike
+// producers): SMs below ceil(backlog / 2) produce, the others leave tasks to them; in a spike the
+// SMs below 82 produce and the others render; every warp takes any work once a warp has left the
+// loop (those that would leave tasks), while tasks wait with none in flight, or without producer
+// SMs.
+constexpr uint32_t SPIKE_PRODUCERS = 132 * 5 / 8;
+
+TEST(PtRole, ProducerSmsFollowTheBacklogThenSplitTheSmsInASpike) {
+  constexpr uint32_t S = 2, SPIKE = 2 * S * 132, P = SPIKE_PRODUCERS;
   // A backlog of productions in flight (none queued), unless `ready` says otherwise.
   auto role = [](uint32_t backlog, uint32_t sm, bool exited = false, bool spike = false,
-                 uint32_t ready = 0) {
-    return ptRole(S, SPIKE, spike, ready, backlog - ready, sm, exited);
+                 uint32_t ready = 0, uint32_t producers = SPIKE_PRODUCERS) {
+    return ptRole(S, SPIKE, producers, spike, ready, backlog - ready, sm, exited);
   };
   EXPECT_EQ(role(0, 0), PtRole::LeavesTasks);  // no backlog: every SM renders
   EXPECT_EQ(role(5, 2), PtRole::Producer);     // ceil(5 / 2) = 3 SMs produce
   EXPECT_EQ(role(5, 3), PtRole::LeavesTasks);
   EXPECT_EQ(role(SPIKE - 1, 131), PtRole::Producer);  // every SM
-  EXPECT_EQ(role(SPIKE, 0), PtRole::Any);             // a spike: every warp takes any work
-  EXPECT_EQ(role(5, 0, false, true), PtRole::Any);    // and for the rest of the frame
-  EXPECT_EQ(role(5, 3, true), PtRole::Any);           // a warp left: the last takes any task
+  EXPECT_EQ(role(SPIKE, P - 1), PtRole::Producer);    // a spike: the first 82 SMs produce
+  EXPECT_EQ(role(SPIKE, P), PtRole::LeavesTasks);     // and the others render
+  EXPECT_EQ(role(5, 0, false, true), PtRole::Producer);      // for the rest of the frame
+  EXPECT_EQ(role(5, 131, false, true), PtRole::LeavesTasks);
+  EXPECT_EQ(role(5, 131, true, true), PtRole::Any);
+  EXPECT_EQ(role(SPIKE, 131, false, false, 0, 0), PtRole::Any);  // no spike producers: any work
+  EXPECT_EQ(role(5, 3, true), PtRole::Any);  // a warp left: the last takes any task
   EXPECT_EQ(role(5, 0, true), PtRole::Producer);
   EXPECT_EQ(role(5, 2, false, false, 3), PtRole::Producer);  // 3 queued and 2 in flight
   EXPECT_EQ(role(5, 3, false, false, 3), PtRole::LeavesTasks);
   EXPECT_EQ(role(1, 5, false, false, 1), PtRole::Any);  // a task waits, none in flight
   EXPECT_EQ(role(1, 0, false, false, 1), PtRole::Any);
-  EXPECT_EQ(ptRole(0, 0, false, 0, 5, 0, false), PtRole::Any);  // without producer SMs
+  EXPECT_EQ(role(SPIKE, 0, false, true, SPIKE), PtRole::Any);  // so in a spike too
+  EXPECT_EQ(ptRole(0, 0, 0, false, 0, 5, 0, false), PtRole::Any);  // without producer SMs
 }
 
 }  // namespace

@@ -144,21 +144,34 @@ constexpr uint32_t NO_PRODUCTION = 0xffffffffu, PT_NO_TASK = 0xffffffffu;
 // Producer only produces (takes tasks, helps first, never renders); LeavesTasks renders, leaving
 // tasks and help to the producers. With producer SMs (`share` S != 0), the warp of SM `sm` is a
 // Producer while sm < ceil(backlog / S), the backlog being the tasks `ready` and those taken and
-// not ended (`inFlight`), else LeavesTasks; every warp is Any without them, in a
-// spike frame (`spike`: its backlog has reached `spikeBacklog`, the first warp to see it marks
-// it), once a warp has left the loop (`exited`: the last worker left takes any task) and while
-// tasks wait with no production in flight (unserved: the producer SMs' warps may all be
-// rendering, or absent, since SM ids are not guaranteed dense; frame 0's first task, the eye's
-// brick, waited 78 ms while every ray of the frame parked on it, whose wait list then took most
-// of 300 ms to walk: BENCHMARKS.md, sessions 57-58).
+// not ended (`inFlight`), else LeavesTasks. In a spike frame (`spike`: its backlog has reached
+// `spikeBacklog`, the first warp to see it marks it) the split is fixed instead: SMs below
+// `spikeProducers` produce and the others render, so that the rays which find the frame's
+// missing bricks keep running (every SM producing made random-spheres' 267 000-brick frame 82 ms
+// against 47: session 40); with spikeProducers 0, every warp is Any there. Every warp is Any
+// without producer SMs, once a warp has left the loop (`exited`: the last worker left takes any
+// task) and while tasks wait with no production in flight (unserved: the producer SMs' warps may
+// all be rendering, or absent, since SM ids are not guaranteed dense; frame 0's first task, the
+// eye's brick, waited 78 ms while every ray of the frame parked on it, whose wait list then took
+// most of 300 ms to walk: BENCHMARKS.md, sessions 57-58).
 enum class PtRole : uint32_t { Any, Producer, LeavesTasks };
 
-GVDP_HD GVDP_INLINE PtRole ptRole(uint32_t share, uint32_t spikeBacklog, bool spike, uint32_t ready,
-                                  uint32_t inFlight, uint32_t sm, bool exited) {
+GVDP_HD GVDP_INLINE PtRole ptRole(uint32_t share, uint32_t spikeBacklog, uint32_t spikeProducers,
+                                  bool spike, uint32_t ready, uint32_t inFlight, uint32_t sm,
+                                  bool exited) {
   const uint32_t backlog = ready + inFlight;
   const bool unserved = ready != 0 && inFlight == 0;
-  if (share == 0 || spike || unserved || backlog >= spikeBacklog) return PtRole::Any;
-  if (sm < (backlog + share - 1) / share) return PtRole::Producer;
+  if (share == 0 || unserved) return PtRole::Any;
+  bool produces = false;
+  if (spike || backlog >= spikeBacklog) {
+    if (spikeProducers == 0) return PtRole::Any;
+    produces = sm < spikeProducers;
+  } else {
+    // sm < ceil(backlog / S) without a division: it ran in every round of every warp's loop, 20
+    // instructions of lane 0 (2.6-3.8% of the worker's instructions in frames that produce, ncu).
+    produces = uint64_t{sm} * share < backlog;
+  }
+  if (produces) return PtRole::Producer;
   return exited ? PtRole::Any : PtRole::LeavesTasks;
 }
 

@@ -110,7 +110,8 @@ struct PtContext {
   TileOrder tiles;                 // their order (the GPU's; row-major on the CPU)
   PtProductions productions;       // the GPU's (pt_worker.cuh)
   uint32_t producerShare;          // the GPU's producer SMs (pt_worker.cuh: roleNow); 0: none
-  uint32_t spikeBacklog;           // the backlog from which a frame has no producer SMs (the same)
+  uint32_t spikeBacklog;           // the backlog from which a frame is a spike (the same)
+  uint32_t spikeProducers;         // the SMs that only produce in a spike frame (the same)
   // The prefetch's predicted frames (a far prefetch: more than one), their cameras (the next
   // frame's first, nearGrid's rays; the others farGrid's each), and a far prefetch's claims at
   // most.

@@ -108,6 +108,7 @@ class PtCuda final : public SpFrameCuda {
                        (workers_ + 31) / 32, ctx.counter(PT_OPEN)};
     ctx.producerShare = producerShare_;
     ctx.spikeBacklog = cache_.startedEmpty() ? 0u : spikeBacklog_;  // (spikeBacklogOf)
+    ctx.spikeProducers = spikeProducers_;
     ctx.tiles = tileOrder_.next(f, stream());
     launchPtFrameStart(ctx, layout_, ringsQuiet_, buffers_.counters.data() + 1, stream());
     ringsQuiet_ = false;  // until this frame's end says so
@@ -129,6 +130,7 @@ class PtCuda final : public SpFrameCuda {
   bool ringsQuiet_ = false;  // the last frame left the rings as a frame starts them
   uint32_t producerShare_ = ptProducerShareFromEnvironment();
   uint32_t spikeBacklog_ = spikeBacklogOf(producerShare_);
+  uint32_t spikeProducers_ = static_cast<uint32_t>(smCount()) * PT_SPIKE_PRODUCER_EIGHTHS / 8;
 };
 
 }  // namespace

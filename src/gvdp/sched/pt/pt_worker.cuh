@@ -434,10 +434,12 @@ struct WarpWorker {
   // prefetch's claim may come after the producers left: the last worker left takes any task) and
   // while tasks wait with no production in flight (ptRole: frame 0's eye brick).
   // A frame whose backlog reaches spikeBacklog (twice what every SM producing would serve) is a
-  // spike, production-bound: from then on every warp takes any work, as without producer SMs,
-  // since few SMs rendering throttle the rays that find its missing bricks (random-spheres
-  // forward's 267 000-brick frame: 47 ms, 82 ms with producer SMs throughout, 47 ms so); so is a
-  // frame from an empty cache, from its start (pt_cuda.cpp: spikeBacklogOf). S = 2
+  // spike, production-bound: from then on the first PT_SPIKE_PRODUCER_EIGHTHS of the SMs
+  // produce and the others render (spikeProducers), since few SMs rendering throttle the rays
+  // that find its missing bricks (random-spheres forward's 267 000-brick frame: 47 ms with every
+  // warp taking any work, 82 ms with every SM producing; session 40) and every warp taking any
+  // work mixes the two codes on every SM (the spike frames 10-17% longer than split: session
+  // 64); so is a frame from an empty cache, from its start (pt_cuda.cpp: spikeBacklogOf). S = 2
   // on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows x1.028-1.058, floors
   // x0.991-0.993 (session 40); on session 44's code FPS x1.08, 1% lows x1.08-1.10, the default
   // since session 45 (BENCHMARKS.md). With S = 0, helper SMs only (PT_HELPER_SMS).
@@ -458,8 +460,8 @@ struct WarpWorker {
       inFlight = loadRelaxed32(ctx.counter(PT_IN_FLIGHT));
       if (ready + inFlight >= ctx.spikeBacklog) atomicExch(ctx.counter(PT_SPIKE), 1u);
     }
-    return ptRole(ctx.producerShare, ctx.spikeBacklog, spike, ready, inFlight, smId(),
-                  loadRelaxed32(ctx.counter(PT_EXITED)) != 0);
+    return ptRole(ctx.producerShare, ctx.spikeBacklog, ctx.spikeProducers, spike, ready, inFlight,
+                  smId(), loadRelaxed32(ctx.counter(PT_EXITED)) != 0);
   }
   // The samples of `owner`'s production; then, the warp's own, its end.
   __device__ void help(uint32_t owner) {
