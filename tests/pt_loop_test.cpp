@@ -208,10 +208,10 @@ TEST(PtRole, ProducerSmsFollowTheBacklogThenSplitTheSmsInASpike) {
   EXPECT_EQ(role(0, 0), PtRole::LeavesTasks);  // no backlog: every SM renders
   EXPECT_EQ(role(5, 2), PtRole::Producer);     // ceil(5 / 2) = 3 SMs produce
   EXPECT_EQ(role(5, 3), PtRole::LeavesTasks);
-  EXPECT_EQ(role(SPIKE - 1, 131), PtRole::Producer);  // every SM
-  EXPECT_EQ(role(SPIKE, P - 1), PtRole::Producer);    // a spike: the first 82 SMs produce
-  EXPECT_EQ(role(SPIKE, P), PtRole::LeavesTasks);     // and the others render
-  EXPECT_EQ(role(5, 0, false, true), PtRole::Producer);      // for the rest of the frame
+  EXPECT_EQ(role(SPIKE - 1, 131), PtRole::Producer);     // every SM
+  EXPECT_EQ(role(SPIKE, P - 1), PtRole::Producer);       // a spike: the first 82 SMs produce
+  EXPECT_EQ(role(SPIKE, P), PtRole::LeavesTasks);        // and the others render
+  EXPECT_EQ(role(5, 0, false, true), PtRole::Producer);  // for the rest of the frame
   EXPECT_EQ(role(5, 131, false, true), PtRole::LeavesTasks);
   EXPECT_EQ(role(5, 131, true, true), PtRole::Any);
   EXPECT_EQ(role(SPIKE, 131, false, false, 0, 0), PtRole::Any);  // no spike producers: any work
@@ -221,7 +221,7 @@ TEST(PtRole, ProducerSmsFollowTheBacklogThenSplitTheSmsInASpike) {
   EXPECT_EQ(role(5, 3, false, false, 3), PtRole::LeavesTasks);
   EXPECT_EQ(role(1, 5, false, false, 1), PtRole::Any);  // a task waits, none in flight
   EXPECT_EQ(role(1, 0, false, false, 1), PtRole::Any);
-  EXPECT_EQ(role(SPIKE, 0, false, true, SPIKE), PtRole::Any);  // so in a spike too
+  EXPECT_EQ(role(SPIKE, 0, false, true, SPIKE), PtRole::Any);      // so in a spike too
   EXPECT_EQ(ptRole(0, 0, 0, false, 0, 5, 0, false), PtRole::Any);  // without producer SMs
 }
 

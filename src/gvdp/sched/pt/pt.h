@@ -21,7 +21,8 @@ uint32_t ptProducerShareFromEnvironment();
 // instruction caches held the production and the march at once: random-spheres forward's exit
 // frame waited for instructions in 67% of its stall samples (ncu, H200). Against that, 25 pt
 // cells x 3 rounds (H200, BENCHMARKS.md session 64): 4/8 1% lows x1.017, 5/8 x1.046, 6/8 x1.011;
-// the spike frames 10-17% shorter, a frame from an empty cache 180 -> 147 ms.
+// random-spheres' and fbm's slowest frames 10-14% shorter, a frame from an empty cache at most
+// 180 -> 147 ms.
 inline constexpr uint32_t PT_SPIKE_PRODUCER_EIGHTHS = 5;
 
 // pt's far prefetch (pt_prefetch.h: prefetchPlanAfter): at most this many predicted frames
