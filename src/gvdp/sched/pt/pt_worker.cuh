@@ -438,11 +438,12 @@ struct WarpWorker {
   // produce and the others render (spikeProducers), since few SMs rendering throttle the rays
   // that find its missing bricks (random-spheres forward's 267 000-brick frame: 47 ms with every
   // warp taking any work, 82 ms with every SM producing; session 40) and every warp taking any
-  // work mixes the two codes on every SM (the spike frames 10-17% longer than split: session
-  // 64); so is a frame from an empty cache, from its start (pt_cuda.cpp: spikeBacklogOf). S = 2
-  // on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows x1.028-1.058, floors
-  // x0.991-0.993 (session 40); on session 44's code FPS x1.08, 1% lows x1.08-1.10, the default
-  // since session 45 (BENCHMARKS.md). With S = 0, helper SMs only (PT_HELPER_SMS).
+  // work mixes the two codes on every SM (random-spheres' and fbm's slowest frames 11-16% longer
+  // than split: session 64); so is a frame from an empty cache, from its start (pt_cuda.cpp:
+  // spikeBacklogOf). S = 2 on an H200, 5 rounds of the 25 pt cells: FPS x1.065-1.072, 1% lows
+  // x1.028-1.058, floors x0.991-0.993 (session 40); on session 44's code FPS x1.08, 1% lows
+  // x1.08-1.10, the default since session 45 (BENCHMARKS.md). With S = 0, helper SMs only
+  // (PT_HELPER_SMS).
   __device__ bool helpsFirst() const {
     return role == PtRole::Producer || (role == PtRole::Any && smId() % PT_HELPER_SMS == 0);
   }
