@@ -3,7 +3,9 @@
 // every production task started in it has run.
 //
 // Queues (lock-free rings of uint32, one atomic per batch):
-//   tasks    production task ids, served first;
+//   tasks    production task ids, served first, in the order claimed (rays' stops and the claims
+//            ahead of the rays in one FIFO: either kind first was no faster, BENCHMARKS.md
+//            session 66);
 //   rays     pixels of relaunched rays, taken 32 at a time (full warps, seed 004);
 //   fresh    the screen itself, 8x4-pixel halves of the 8x8 tiles, through a counter.
 // A ray that finds a brick MISSING takes a task id from the `freeIds` ring and claims the brick
