@@ -404,6 +404,14 @@ GVDP_HD GVDP_INLINE void publishEmpty(const Scope& group, const P& producer, con
   });
 }
 
+// An empty brick's entry before its box is grown (pt's GPU worker, which queues the brick's rays
+// in between): the brick alone, as its own production found it. publishEmpty publishes it again
+// with its box, and counts and lists it then.
+GVDP_HD GVDP_INLINE void publishEmptyAlone(const CacheView& cache, const BrickKey& key) {
+  storeRelease32(&cache.entries[cache.clipmap.entryIndex(key.level, key.brick)],
+                 emptyEntry(EmptyReachCodes{}));
+}
+
 // Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with
 // PER * size >= BRICK_SAMPLE_COUNT): the group ORs the occupancy cells of its nonzero samples
 // staged(k, sample) (brick_pool.h); unless none is set (a CLEAR brick: no slot, nothing written,

@@ -261,7 +261,8 @@ __device__ bool openProductionTask(const PtContext& ctx, const P& producer, uint
 }
 
 // The end of Algorithm 2 by warp `warp`, its chunks computed: the helpers' chunks waited for, the
-// brick committed, then the task's waiting rays queued again as full warps.
+// brick committed, then the task's waiting rays queued again as full warps (an EMPTY brick's box
+// is grown after its rays are queued).
 template <class P>
 __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool, const P& producer,
                                     uint32_t id, bool chunks, int warp, int lane) {
@@ -280,8 +281,16 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
   }
   const Rgba8* stage = pp.stage + size_t{me} * BRICK_SAMPLE_COUNT;
   constexpr int PER = (BRICK_SAMPLE_COUNT + 31) / 32;
-  commitBrick<PER>(WarpScope{lane}, producer, ctx.cache, pool, key, empty,
-                   [&](int, int s) { return loadRelaxed32(&stage[s]); });
+  auto commit = [&] {
+    commitBrick<PER>(WarpScope{lane}, producer, ctx.cache, pool, key, empty,
+                     [&](int, int s) { return loadRelaxed32(&stage[s]); });
+  };
+  // An EMPTY brick's rays go on before its box is grown: it is published EMPTY alone first, its
+  // rays are queued, and commitBrick then grows its box, marks the box's members and ancestors and
+  // publishes it again with the box (either entry says EMPTY; the box only lets rays skip more).
+  // The growth is rounds of bound tests that the rays waited for (sessions 29, 36, 52).
+  if (empty && lane == 0) publishEmptyAlone(ctx.cache, key);
+  if (!empty) commit();
   __syncwarp();
   if (lane == 0) markIfPrefetched(ctx, id, key);
   uint32_t p = 0;
@@ -303,6 +312,7 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
     if (lane == 0) ringPublish(ctx.rays, static_cast<uint32_t>(__popc(m)));
     relaunched += static_cast<uint32_t>(__popc(m));
   }
+  if (empty) commit();
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
     atomicMax(ctx.counter(PT_LONGEST_LIST), relaunched);
