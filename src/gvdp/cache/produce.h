@@ -412,21 +412,15 @@ GVDP_HD GVDP_INLINE void publishEmptyAlone(const CacheView& cache, const BrickKe
                  emptyEntry(EmptyReachCodes{}));
 }
 
-// Algorithm 2's end, by a group whose member r holds the samples r + k * size (k < PER, with
-// PER * size >= BRICK_SAMPLE_COUNT): the group ORs the occupancy cells of its nonzero samples
-// staged(k, sample) (brick_pool.h); unless none is set (a CLEAR brick: no slot, nothing written,
-// brick_key.h) the leader takes a slot, each member writes its samples to it and the leader the
-// cells, each member fences (device scope: other blocks read the pool), and the leader
-// publishes the entry once every member's writes are fenced; an empty brick is published by the
-// group (publishEmpty).
-template <int PER, class Scope, class P, class Staged>
-GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, const CacheView& cache,
-                                     const BrickPool& pool, const BrickKey& key, bool empty,
-                                     Staged staged) {
-  if (empty) {
-    publishEmpty(group, producer, cache, key);
-    return;
-  }
+// Algorithm 2's end for a brick with matter, by a group whose member r holds the samples
+// r + k * size (k < PER, with PER * size >= BRICK_SAMPLE_COUNT): the group ORs the occupancy
+// cells of its nonzero samples staged(k, sample) (brick_pool.h); unless none is set (a CLEAR
+// brick: no slot, nothing written, brick_key.h) the leader takes a slot, each member writes its
+// samples to it and the leader the cells, each member fences (device scope: other blocks read the
+// pool), and the leader publishes the entry once every member's writes are fenced.
+template <int PER, class Scope, class Staged>
+GVDP_HD GVDP_INLINE void commitSamples(const Scope& group, const CacheView& cache,
+                                       const BrickPool& pool, const BrickKey& key, Staged staged) {
   uint64_t cells = 0;
   GVDP_UNROLL
   for (int k = 0; k < PER; ++k) {
@@ -457,6 +451,18 @@ GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, cons
   }
   group.sync();
   if (group.rank() == 0) publishBrick(cache, key, slot);
+}
+
+// Algorithm 2's end: an empty brick published by the group (publishEmpty), any other committed
+// (commitSamples).
+template <int PER, class Scope, class P, class Staged>
+GVDP_HD GVDP_INLINE void commitBrick(const Scope& group, const P& producer, const CacheView& cache,
+                                     const BrickPool& pool, const BrickKey& key, bool empty,
+                                     Staged staged) {
+  if (empty)
+    publishEmpty(group, producer, cache, key);
+  else
+    commitSamples<PER>(group, cache, pool, key, staged);
 }
 
 // Algorithm 2 whole, by a group that keeps its samples in registers: member r evaluates the

@@ -281,16 +281,15 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
   }
   const Rgba8* stage = pp.stage + size_t{me} * BRICK_SAMPLE_COUNT;
   constexpr int PER = (BRICK_SAMPLE_COUNT + 31) / 32;
-  auto commit = [&] {
-    commitBrick<PER>(WarpScope{lane}, producer, ctx.cache, pool, key, empty,
-                     [&](int, int s) { return loadRelaxed32(&stage[s]); });
-  };
   // An EMPTY brick's rays go on before its box is grown: it is published EMPTY alone first, its
-  // rays are queued, and commitBrick then grows its box, marks the box's members and ancestors and
-  // publishes it again with the box (either entry says EMPTY; the box only lets rays skip more).
-  // The growth is rounds of bound tests that the rays waited for (sessions 29, 36, 52).
-  if (empty && lane == 0) publishEmptyAlone(ctx.cache, key);
-  if (!empty) commit();
+  // rays are queued, and publishEmpty then grows its box, marks the box's members and ancestors
+  // and publishes it again with the box (either entry says EMPTY; the box only lets rays skip
+  // more). The growth is rounds of bound tests that the rays waited for (sessions 29, 36, 52).
+  if (!empty)
+    commitSamples<PER>(WarpScope{lane}, ctx.cache, pool, key,
+                       [&](int, int s) { return loadRelaxed32(&stage[s]); });
+  else if (lane == 0)
+    publishEmptyAlone(ctx.cache, key);
   __syncwarp();
   if (lane == 0) markIfPrefetched(ctx, id, key);
   uint32_t p = 0;
@@ -312,7 +311,7 @@ __device__ void closeProductionTask(const PtContext& ctx, const BrickPool& pool,
     if (lane == 0) ringPublish(ctx.rays, static_cast<uint32_t>(__popc(m)));
     relaunched += static_cast<uint32_t>(__popc(m));
   }
-  if (empty) commit();
+  if (empty) publishEmpty(WarpScope{lane}, producer, ctx.cache, key);
   if (lane == 0) {
     atomicAdd(ctx.counter(PT_RELAUNCHED), relaunched);
     atomicMax(ctx.counter(PT_LONGEST_LIST), relaunched);
