@@ -178,6 +178,7 @@ TEST(PtCpu, PrefetchChangesWhatIsProducedNeverTheImage) {
 // ahead, so the frame where the camera comes out requests fewer bricks. The images stay the same.
 void expectFarPrefetchChangesNoImage(Backend backend, int w, int h) {
   SchedulerOptions o{backend, SchedulerKind::Pt};
+  o.prefetch = FAR_PREFETCH_STRIDE;  // the prefetch the far one extends (off by default)
   Renders near = renderRun("random-spheres", o, 20, w, h, Movement::Forward);
   o.farPrefetch = 8;
   Renders far = renderRun("random-spheres", o, 20, w, h, Movement::Forward);

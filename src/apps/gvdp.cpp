@@ -109,7 +109,8 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                   "pt: in each frame's tail, produce the bricks of the next frame the camera's "
                   "motion predicts, marching a ray per N x N pixels, N 0.." +
                       std::to_string(MAX_PREFETCH) + " (default " +
-                      std::to_string(DEFAULT_PREFETCH) + "; 0: off)");
+                      std::to_string(DEFAULT_PREFETCH) + ": off; " +
+                      std::to_string(FAR_PREFETCH_STRIDE) + " with --far-prefetch)");
   cmd->add_option("--far-prefetch", f.farPrefetch, farPrefetchHelp());
   cmd->add_option("--budget-ms", f.budgetMs,
                   "frame-time budget: past it, rays whose brick is not ready show the nearest "
@@ -219,8 +220,10 @@ uint32_t lookaheadFrom(const std::optional<int64_t>& n, const char* flag = "--lo
   return static_cast<uint32_t>(*n);
 }
 
-uint32_t prefetchFrom(const std::optional<int64_t>& n) {
-  if (!n) return DEFAULT_PREFETCH;
+// --prefetch N; unset, DEFAULT_PREFETCH (off), or FAR_PREFETCH_STRIDE under a far prefetch
+// (--far-prefetch `far` > 1), which extends it.
+uint32_t prefetchFrom(const std::optional<int64_t>& n, const std::optional<int64_t>& far) {
+  if (!n) return far && *far > 1 ? FAR_PREFETCH_STRIDE : DEFAULT_PREFETCH;
   GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_PREFETCH, "bad --prefetch ", *n, " (expected 0..",
                    MAX_PREFETCH, ")");
   return static_cast<uint32_t>(*n);
@@ -270,7 +273,7 @@ SequenceOptions toOptions(const RenderFlags& f) {
   o.scheduler.lookahead = lookaheadFrom(f.lookahead);
   o.scheduler.tailLookahead =
       lookaheadFrom(f.tailLookahead, "--tail-lookahead", DEFAULT_TAIL_LOOKAHEAD);
-  o.scheduler.prefetch = prefetchFrom(f.prefetch);
+  o.scheduler.prefetch = prefetchFrom(f.prefetch, f.farPrefetch);
   o.scheduler.farPrefetch = farPrefetchFrom(f.farPrefetch, o.scheduler.prefetch);
   o.scheduler.budgetMs = budgetFrom(f.budgetMs);
   o.fovDegrees = f.fov;
@@ -567,7 +570,7 @@ BenchOptions benchOptions(const BenchFlags& f) {
   o.poolBricks = poolBricksFrom(f.poolBricks, std::nullopt);
   o.lookahead = lookaheadFrom(f.lookahead);
   o.tailLookahead = lookaheadFrom(f.tailLookahead, "--tail-lookahead", DEFAULT_TAIL_LOOKAHEAD);
-  o.prefetch = prefetchFrom(f.prefetch);
+  o.prefetch = prefetchFrom(f.prefetch, f.farPrefetch);
   o.farPrefetch = farPrefetchFrom(f.farPrefetch, o.prefetch);
   o.budgetMs = budgetFrom(f.budgetMs);
   o.scale = f.scale;
@@ -771,7 +774,7 @@ int run(int argc, char** argv) {
                            "; see render --tail-lookahead)");
   benchCmd->add_option("--prefetch", bench.prefetch,
                        "pt's idle-time prefetch, a ray per N x N pixels (default " +
-                           std::to_string(DEFAULT_PREFETCH) + "; 0: off; see render --prefetch)");
+                           std::to_string(DEFAULT_PREFETCH) + ": off; see render --prefetch)");
   benchCmd->add_option("--far-prefetch", bench.farPrefetch, farPrefetchHelp());
   benchCmd->add_option("--budget-ms", bench.budgetMs,
                        "frame-time budget (see render --budget-ms; default off)");

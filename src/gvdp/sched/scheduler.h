@@ -68,9 +68,17 @@ constexpr uint32_t MAX_LOOKAHEAD = 64;
 constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 16;  // pt: see ptTailLookahead
 
 // pt's idle-time prefetch (pt_prefetch.h): a ray of the predicted next frame per N x N pixels, 0:
-// off. On by default: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 made pt's 25 cells faster
-// on the whole, never changing an image, and 2 was no better.
-constexpr uint32_t DEFAULT_PREFETCH = 4;
+// off. Off by default since session 68: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 had made
+// pt's 25 cells faster on the whole and 2 was no better, but since EMPTY boxes mark their members
+// and an EMPTY brick's rays go on before its box is grown (sessions 53, 67) the frame's own rays
+// find the bricks at least as fast, and the prefetch's marches and productions after the frame's
+// last ray are most of a terrain frame's end: perlin's walkthrough frame 12 2.22 -> 1.84 ms
+// without it. H200, 25 pt cells, two calls of 3 rounds, --prefetch 0 against 4: FPS x1.045 and
+// x1.042, 1% lows x0.999 and x0.996, perlin's and fbm's backward and sideways walks +5-19%; it
+// loses random-spheres spinning (-6%) and aligned-spheres' walkthrough (-8% in one call, 0 in
+// the other). A far prefetch (--far-prefetch) needs it: FAR_PREFETCH_STRIDE unless --prefetch says.
+constexpr uint32_t DEFAULT_PREFETCH = 0;
+constexpr uint32_t FAR_PREFETCH_STRIDE = 4;
 constexpr uint32_t MAX_PREFETCH = 64;
 
 // pt's far prefetch (pt_prefetch.h: prefetchPlanAfter): after an idle frame whose view is closed
@@ -96,7 +104,8 @@ struct SchedulerOptions {
   uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt: missing bricks a stopped ray claims ahead
   uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt: at least this many in a frame's tail
   uint32_t prefetch = DEFAULT_PREFETCH;             // pt: a prefetch ray per N x N pixels (0: none)
-  uint32_t farPrefetch = 0;     // pt: predicted frames a far prefetch marches (0: off; see above)
+  uint32_t farPrefetch = 0;     // pt: predicted frames a far prefetch marches (0: off; with
+                                // prefetch != 0 only, e.g. FAR_PREFETCH_STRIDE; see above)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
