@@ -391,7 +391,8 @@ TEST(Cli, PtProducerShareEnvironmentIsChecked) {
 }
 
 // --far-prefetch N turns on pt's far prefetch (0: off, the default): 0..16 predicted frames, with
-// the prefetch it extends; stats.json and the bench's JSON record it.
+// the prefetch it extends (off by default, FAR_PREFETCH_STRIDE under a far prefetch unless
+// --prefetch says); stats.json and the bench's JSON record both.
 TEST(Cli, FarPrefetchIsCheckedAndRecorded) {
   const std::string dir = test::tempDir("cli_far"), out = " --out " + dir;
   expectInputError("render --backend cpu --scheduler pt --far-prefetch 17" + TINY + out,
@@ -408,9 +409,11 @@ TEST(Cli, FarPrefetchIsCheckedAndRecorded) {
       test::runGvdp("render --backend cpu --scheduler pt --far-prefetch 8" + TINY + out);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(readStats(dir)["far_prefetch"], 8);
+  EXPECT_EQ(readStats(dir)["prefetch"], FAR_PREFETCH_STRIDE) << "the prefetch it extends, on";
   r = test::runGvdp("render --backend cpu --scheduler pt" + TINY + out);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(readStats(dir)["far_prefetch"], 0);
+  EXPECT_EQ(readStats(dir)["prefetch"], DEFAULT_PREFETCH) << "off by default";
   std::filesystem::remove_all(dir);
 }
 
