@@ -119,6 +119,9 @@ struct SchedulerOptions {
 // gave less (FPS x1.025-1.043). 16 by default since session 41 (H200, 25 pt cells against 8, 2 + 4
 // rounds): 1% lows x1.014 / x1.017, FPS x1.004 / x1.003, random-spheres' frame-12 idle 6.2-7.9% ->
 // 3.5-5.9%, fbm spinning's over-production 5.4-5.8% -> 8.1-8.3%; 32 over-produced 12.6% there.
+// Re-swept with the prefetch off (session 69, 3 + 5 rounds): 8 and 32 made random-spheres' frame
+// 12 4-5% longer (5.03-5.09 -> 5.28 ms), 64 FPS x0.975 at 10.0% over-production; --lookahead 4
+// x1.003-1.004, within the spread.
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
 }
