@@ -203,6 +203,25 @@ TEST(PtCpu, FarPrefetchChangesWhatIsProducedNeverTheImage) {
   expectFarPrefetchChangesNoImage(Backend::Cpu, 160, 100);
 }
 
+// A library user's far prefetch turns on the prefetch it extends (off by default), as the command
+// line's does; an explicit prefetch stays, and only pt has either.
+TEST(PtOptions, AFarPrefetchTurnsOnThePrefetchItExtends) {
+  SchedulerOptions o{Backend::Cpu, SchedulerKind::Pt};
+  EXPECT_EQ(resolvedOptions(o).prefetch, DEFAULT_PREFETCH);
+  o.farPrefetch = 8;
+  EXPECT_EQ(resolvedOptions(o).prefetch, FAR_PREFETCH_STRIDE);
+  EXPECT_EQ(resolvedOptions(o).farPrefetch, 8u) << "not dropped for want of a prefetch";
+  o.prefetch = 2;
+  EXPECT_EQ(resolvedOptions(o).prefetch, 2u);
+  o.farPrefetch = 1;  // one predicted frame: the ordinary prefetch, nothing to extend
+  o.prefetch = 0;
+  EXPECT_EQ(resolvedOptions(o).prefetch, 0u);
+  o.kind = SchedulerKind::Sp;
+  o.farPrefetch = 8;
+  EXPECT_EQ(resolvedOptions(o).prefetch, 0u);
+  EXPECT_EQ(resolvedOptions(o).farPrefetch, 0u);
+}
+
 TEST(PtCpu, TinyPoolDegradesButFinishesEveryPixel) {
   Renders pt = test::schedulerRun("forest", {Backend::Cpu, SchedulerKind::Pt, 64}, 3, 96, 60);
   for (const FrameStats& s : pt.stats) {

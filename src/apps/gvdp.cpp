@@ -220,10 +220,9 @@ uint32_t lookaheadFrom(const std::optional<int64_t>& n, const char* flag = "--lo
   return static_cast<uint32_t>(*n);
 }
 
-// --prefetch N; unset, DEFAULT_PREFETCH (off), or FAR_PREFETCH_STRIDE under a far prefetch
-// (--far-prefetch `far` > 1), which extends it.
+// --prefetch N; unset, the default as a far prefetch (--far-prefetch `far`) leaves it (prefetchOf).
 uint32_t prefetchFrom(const std::optional<int64_t>& n, const std::optional<int64_t>& far) {
-  if (!n) return far && *far > 1 ? FAR_PREFETCH_STRIDE : DEFAULT_PREFETCH;
+  if (!n) return prefetchOf(DEFAULT_PREFETCH, far && *far > 1 ? static_cast<uint32_t>(*far) : 0u);
   GVDP_INPUT_CHECK(*n >= 0 && *n <= MAX_PREFETCH, "bad --prefetch ", *n, " (expected 0..",
                    MAX_PREFETCH, ")");
   return static_cast<uint32_t>(*n);

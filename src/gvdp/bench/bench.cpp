@@ -146,7 +146,7 @@ BenchResults runBench(const BenchOptions& o,
   r.frames = o.frames;
   r.warmup = o.warmup;
   r.budgetMs = o.budgetMs;
-  r.prefetch = o.prefetch;
+  r.prefetch = prefetchOf(o.prefetch, o.farPrefetch);  // as every pt cell uses it
   r.lookahead = o.lookahead;
   r.tailLookahead = o.tailLookahead;
   r.farPrefetch = o.farPrefetch;
@@ -173,7 +173,7 @@ BenchResults runBench(const BenchOptions& o,
                         100.0 * c.withinBudget, o.budgetMs, 100.0 * c.coarserPixels);
           text += line;
         }
-        if (o.prefetch) {
+        if (r.prefetch) {
           std::snprintf(line, sizeof line, "; %.0f bricks/frame prefetched, %.1f%% used next",
                         c.prefetchedPerFrame, 100.0 * c.prefetchUsed);
           text += line;

@@ -104,8 +104,8 @@ struct SchedulerOptions {
   uint32_t lookahead = DEFAULT_LOOKAHEAD;           // pt: missing bricks a stopped ray claims ahead
   uint32_t tailLookahead = DEFAULT_TAIL_LOOKAHEAD;  // pt: at least this many in a frame's tail
   uint32_t prefetch = DEFAULT_PREFETCH;             // pt: a prefetch ray per N x N pixels (0: none)
-  uint32_t farPrefetch = 0;     // pt: predicted frames a far prefetch marches (0: off; with
-                                // prefetch != 0 only, e.g. FAR_PREFETCH_STRIDE; see above)
+  uint32_t farPrefetch = 0;     // pt: predicted frames a far prefetch marches (0: off; it turns
+                                // the prefetch on: prefetchOf; see above)
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
@@ -151,6 +151,12 @@ inline uint32_t pendingLaunchesOf(const SchedulerOptions& o) {
   return o.pendingLaunches ? o.pendingLaunches : DEFAULT_PENDING_LAUNCHES;
 }
 
+// pt's prefetch as used: a far prefetch (more than one predicted frame) extends the idle-time
+// prefetch, so with the prefetch off (the default) it turns it on at FAR_PREFETCH_STRIDE.
+inline uint32_t prefetchOf(uint32_t prefetch, uint32_t farPrefetch) {
+  return prefetch == 0 && farPrefetch > 1 ? FAR_PREFETCH_STRIDE : prefetch;
+}
+
 // The options with every default made explicit, as the scheduler will use them: the backend's
 // pool (0 for direct, which has none) and dp's pending launches (0 for the others). Resolved
 // once, at the top (the command line, the benchmark), and reported as used (stats.json).
@@ -159,7 +165,7 @@ inline SchedulerOptions resolvedOptions(SchedulerOptions o) {
   o.pendingLaunches = o.kind == SchedulerKind::Dp ? pendingLaunchesOf(o) : 0;
   o.lookahead = o.kind == SchedulerKind::Pt ? o.lookahead : 0;
   o.tailLookahead = o.kind == SchedulerKind::Pt ? o.tailLookahead : 0;
-  o.prefetch = o.kind == SchedulerKind::Pt ? o.prefetch : 0;
+  o.prefetch = o.kind == SchedulerKind::Pt ? prefetchOf(o.prefetch, o.farPrefetch) : 0;
   o.farPrefetch = o.kind == SchedulerKind::Pt && o.prefetch != 0 ? o.farPrefetch : 0;
   o.budgetMs = o.kind == SchedulerKind::Direct ? NO_BUDGET : o.budgetMs;
   return o;
