@@ -468,7 +468,7 @@ TEST(PtPrefetch, IsDenseOnlyAfterOneThatYielded) {
 }
 
 // A prefetch march may outlive the frame's rays only once the frame's prefetch has claimed a
-// brick; a relaunched ray's lookahead always goes on.
+// brick; a lookahead (its ray parked before it, and may have been the frame's last) never does.
 TEST(PtPrefetch, MarchesOutliveTheFramesRaysOnlyOnceTheyClaim) {
   std::vector<uint32_t> counters(PtLayout::COUNTERS, 0u);
   PtContext ctx{};
@@ -476,11 +476,14 @@ TEST(PtPrefetch, MarchesOutliveTheFramesRaysOnlyOnceTheyClaim) {
   StartAhead prefetch = StartAhead::prefetch(ctx), lookahead = StartAhead::lookahead(ctx, 2);
   *ctx.counter(PT_LIVE_RAYS) = 7;
   EXPECT_TRUE(prefetch.goesOn()) << "rays live";
+  EXPECT_TRUE(lookahead.goesOn()) << "rays live";
   *ctx.counter(PT_LIVE_RAYS) = 0;
   EXPECT_FALSE(prefetch.goesOn()) << "no ray live, nothing claimed";
-  EXPECT_TRUE(lookahead.goesOn());
+  EXPECT_FALSE(lookahead.goesOn()) << "no ray live";
   *ctx.counter(PT_PREFETCHES) = 1;
+  *ctx.counter(PT_LOOKAHEAD) = 1;
   EXPECT_TRUE(prefetch.goesOn()) << "no ray live, but claiming";
+  EXPECT_FALSE(lookahead.goesOn()) << "no ray live, though lookaheads claimed";
 }
 
 // A frame takes its rings over from the last one only if that left them as a frame starts

@@ -15,9 +15,9 @@
 // the production closes the list after publishing the brick and queues its rays as full warps.
 // A push onto a closed list fails and the ray marches on: no ray is ever lost or held twice.
 //
-// A stopped ray then looks ahead (cache/lookahead.h): it claims up to `lookahead` more missing
-// bricks on its path, each with an id from a ring of its own (`lookaheadIds`), taken only when
-// one is ready (never waited for): without an id the brick stays MISSING for a ray to claim.
+// A stopped ray, once parked, looks ahead (cache/lookahead.h): it claims up to `lookahead` more
+// missing bricks on its path, each with an id from a ring of its own (`lookaheadIds`), taken only
+// when one is ready (never waited for): without an id the brick stays MISSING for a ray to claim.
 //
 // Idle-time prefetch (`prefetch`, DEFAULT_PREFETCH; 0: off): a worker with nothing to take and no
 // production to help, while rays of the frame are live (its tail; claimPrefetchItems), unless the
@@ -101,9 +101,15 @@ struct OneLane {
 // brick if it was MISSING (claimStop: the claim's ring and task code stays out of the march's
 // loop) and parks on its production: parkRay, or on the GPU a warp-aggregated version of it
 // (pt_worker.cuh). A ray that stops again - after a relaunch (`relaunched`) or a failed park -
-// first looks ahead (cache/lookahead.h), one ray for all those stopping on the same brick with
-// it (Park::leads): a chain of waits is what the lookahead cuts, and a fresh ray's first stop is
-// mostly on a brick its whole tile shares.
+// then looks ahead (cache/lookahead.h) from its state, one ray for all those stopping on the same
+// brick with it (Park::leads): a chain of waits is what the lookahead cuts, and a fresh ray's
+// first stop is mostly on a brick its whole tile shares. It parks first: a parked ray is
+// relaunched once its brick is produced, whatever its old lane is doing, so the lookahead is off
+// its path. Looking ahead first, a ray waited for its lookahead's march and claims, which in the
+// tail took longer than its brick's production: 73-104 us for a tail lookahead of 14-17 bricks in
+// random-spheres' walkthrough frames 10-14, against ~28 us for a production. Parking first: 25 pt
+// cells FPS x1.002-1.003, every random-spheres cell +1-3% in two calls, its frame 12 5.09 ->
+// 5.00 ms, the same images (H200, BENCHMARKS.md session 70).
 template <class Pool, class Park = ParkOne, class Lanes = OneLane>
 GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool relaunched,
                       Park park = {}, Lanes lanes = {}) {
@@ -126,13 +132,14 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
     if (access.onMiss.missed) claimStop(ctx, access);
     access.onMiss.missed = false;
     noteRayStop(ctx.cache, static_cast<int>(p));
-    if (again && park.leads(access.stopEntry)) {
+    const bool looks = again && park.leads(access.stopEntry);
+    live = !park(ctx, p, access.stopEntry);
+    if (looks) {  // on this lane's copy of the state: a parked ray may run elsewhere
       LookaheadPlan plan = lookaheadPlan(ctx);
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
                                      StartAhead::lookahead(ctx, plan.bricks), plan.bricks,
                                      plan.standInLevels);
     }
-    live = !park(ctx, p, access.stopEntry);
     again = true;
   }
   if (pixel >= 0) access.addCounts(pixel);

@@ -115,10 +115,10 @@ struct StartAhead {
   uint32_t firstId;
   PtCounter counted;
   uint32_t left;
-  bool endsWithRays;  // a prefetch's: see goesOn
+  bool endsWithRays;  // see goesOn
 
   static GVDP_HD StartAhead lookahead(const PtContext& c, uint32_t bricks) {
-    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks, false};
+    return {&c, &c.lookaheadIds, c.firstLookaheadId, PT_LOOKAHEAD, bricks, true};
   }
   // A far prefetch's marches all go on: its frame is idle (prefetchPlanAfter).
   static GVDP_HD StartAhead prefetch(const PtContext& c) {
@@ -129,16 +129,19 @@ struct StartAhead {
             MAX_LATE_CLAIMS,
             c.prefetchPoses == 1};
   }
-  // Whether the march may enter another brick (cache/lookahead.h). A prefetch march enters none
-  // after the frame's last ray has finished unless the frame's prefetch has claimed a brick: the
-  // frame ends with its last march, and one of 64 bricks outlived the rays by up to 0.5 ms,
-  // whatever it found (forest's walkthrough floor 5.31 ms, 4.79 without the prefetch in the floor's
-  // frames). H100, 25 pt cells against marches that always go on: floors x0.958, FPS x0.999; ending
-  // them unless a brick per 1024 prefetch rays was claimed cut aligned-spheres' walkthrough, which
-  // lives on its prefetch, from 452 to 389-441 FPS (BENCHMARKS.md, session 22).
+  // Whether the march may enter another brick (cache/lookahead.h). A lookahead enters none
+  // after the frame's last ray has finished: its ray parked before it looked ahead (ptRunRay), so
+  // that ray, the frame's last, may finish while the march goes on, and what the march would
+  // claim then only holds the frame open. A prefetch march enters none after the frame's last
+  // ray has finished unless the frame's prefetch has claimed a brick: the frame ends with its
+  // last march, and one of 64 bricks outlived the rays by up to 0.5 ms, whatever it found
+  // (forest's walkthrough floor 5.31 ms, 4.79 without the prefetch in the floor's frames). H100,
+  // 25 pt cells against marches that always go on: floors x0.958, FPS x0.999; ending them unless
+  // a brick per 1024 prefetch rays was claimed cut aligned-spheres' walkthrough, which lives on
+  // its prefetch, from 452 to 389-441 FPS (BENCHMARKS.md, session 22).
   GVDP_HD bool goesOn() const {
-    return !endsWithRays || loadRelaxed32(ctx->counter(PT_LIVE_RAYS)) != 0 ||
-           loadRelaxed32(ctx->counter(counted)) != 0;
+    if (!endsWithRays || loadRelaxed32(ctx->counter(PT_LIVE_RAYS)) != 0) return true;
+    return counted == PT_PREFETCHES && loadRelaxed32(ctx->counter(counted)) != 0;
   }
   GVDP_HD void operator()(const CacheView& cache, int level, Vec3i g, uint32_t* entry) {
     if (left == 0 || loadRelaxed32(&cache.counters[COUNTER_FREE_NEXT]) >= cache.freeCount() / 2)
