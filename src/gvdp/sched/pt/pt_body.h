@@ -108,8 +108,8 @@ struct OneLane {
 // its path. Looking ahead first, a ray waited for its lookahead's march and claims, which in the
 // tail took longer than its brick's production: 73-104 us for a tail lookahead of 14-17 bricks in
 // random-spheres' walkthrough frames 10-14, against ~28 us for a production. Parking first: 25 pt
-// cells FPS x1.002-1.003, every random-spheres cell +1-3% in two calls, its frame 12 5.09 ->
-// 5.00 ms, the same images (H200, BENCHMARKS.md session 70).
+// cells FPS x1.002-1.005, every random-spheres cell +1-3% in three calls, its frame 12 5.09-5.15
+// -> 5.00-5.02 ms, the same images (H200, BENCHMARKS.md session 70).
 template <class Pool, class Park = ParkOne, class Lanes = OneLane>
 GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool relaunched,
                       Park park = {}, Lanes lanes = {}) {
