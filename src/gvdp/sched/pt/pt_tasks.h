@@ -74,7 +74,11 @@ GVDP_HD GVDP_INLINE bool startTask(const PtContext& ctx, uint32_t id, int level,
 
 // A claim no ray waits for (a lookahead's, one past the frame's deadline, or the prefetch's): an
 // id from `ids` (values v: task id first + v) if one is ready (one attempt), then startTask;
-// without one the brick stays MISSING. True when this claim started the task.
+// without one the brick stays MISSING. True when this claim started the task. The one attempt is
+// a throttle that helps: a warp's lanes race for it and most lose (random-spheres' frame 12:
+// ~2 650 turned down, ~1 500 made), and retrying while ids were ready claimed 30% more in the
+// tail, whose rays then waited on those productions instead: 25 pt cells FPS x0.991, 1% lows
+// x0.964 (H200, BENCHMARKS.md session 72).
 GVDP_HD GVDP_INLINE bool startTaskFrom(const PtContext& ctx, const Ring& ids, uint32_t first,
                                        int level, Vec3i g, uint32_t* entry) {
   uint32_t position = 0;
