@@ -101,7 +101,7 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_LOOKAHEAD) + "; 0: off)");
   cmd->add_option("--tail-lookahead", f.tailLookahead,
-                  "pt: at least this lookahead in a frame's tail (at most one ray in 256 live), "
+                  "pt: at least this lookahead in a frame's tail (at most one ray in 16 live), "
                   "0.." +
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_TAIL_LOOKAHEAD) + "; 0: --lookahead's)");

@@ -109,7 +109,7 @@ struct SchedulerOptions {
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
-// pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE = 256 live: pt_body.h,
+// pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE = 16 live: pt_body.h,
 // lookaheadPlan, which there also passes the bricks not resident): at least `tailLookahead` bricks,
 // unless the lookahead is off. There the last chains of productions are what is left of the frame.
 // On an H100 (25 pt cells, BENCHMARKS.md, session 23), 8 bricks once one ray in 256 is live gave
@@ -121,7 +121,8 @@ struct SchedulerOptions {
 // 3.5-5.9%, fbm spinning's over-production 5.4-5.8% -> 8.1-8.3%; 32 over-produced 12.6% there.
 // Re-swept with the prefetch off (session 69, 3 + 5 rounds): 8 and 32 made random-spheres' frame
 // 12 4-5% longer (5.03-5.09 -> 5.28 ms), 64 FPS x0.975 at 10.0% over-production; --lookahead 4
-// x1.003-1.004, within the spread.
+// x1.003-1.004, within the spread. Those sweeps ran with the tail at one ray in 256 live; it
+// begins at one in 16 since session 73 (pt_context.h: PT_TAIL_SHARE).
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
 }
