@@ -122,7 +122,8 @@ struct SchedulerOptions {
 // Re-swept with the prefetch off (session 69, 3 + 5 rounds): 8 and 32 made random-spheres' frame
 // 12 4-5% longer (5.03-5.09 -> 5.28 ms), 64 FPS x0.975 at 10.0% over-production; --lookahead 4
 // x1.003-1.004, within the spread. Those sweeps ran with the tail at one ray in 256 live; it
-// begins at one in 16 since session 73 (pt_context.h: PT_TAIL_SHARE).
+// begins at one in 16 since session 73 (pt_context.h: PT_TAIL_SHARE), where 8 bricks gave FPS
+// x0.988 and 32 x0.995 at 9.9% over-production (2 rounds).
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;
 }
