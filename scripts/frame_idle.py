@@ -7,7 +7,7 @@ idle varies from run to run by points (perlin's walkthrough frame 12 on an H200:
 6 runs of one binary, BENCHMARKS.md session 56), so one run says little. A run that hangs ends
 in GVDP_WATCHDOG_S seconds (60 unless set: base/watchdog.h).
 
-Usage: scripts/frame_idle.py [--runs N] [--scenes A,B] [--frame F] [--movement M]
+Usage: scripts/frame_idle.py [--runs N] [--scenes A,B] [--frame F] [--again] [--movement M]
                              [--scheduler S] [--backend B] [--size WxH] [LABEL=]BIN...
 A binary without a label is named by its folder (carry/off/gvdp: off), as scripts/ab_gpu.sh
 names them. Bad arguments, or a binary that is not there, are a one-line error with exit status 2;
@@ -21,7 +21,8 @@ import subprocess
 import sys
 import tempfile
 
-SUMMARY = re.compile(r"frame (\d+): ([\d.]+) ms; timeline: ([\d.]+) ms.*; idle ([\d.]+)%")
+SUMMARY = re.compile(
+    r"frame (\d+)(?: again)?: ([\d.]+) ms; timeline: ([\d.]+) ms.*; idle ([\d.]+)%")
 
 
 def fail(message):
@@ -86,6 +87,9 @@ def main():
     common_arguments(ap, 6)
     ap.add_argument("--scenes", default="perlin,random-spheres")
     ap.add_argument("--frame", type=int, default=12, help="the frame timed (12)")
+    ap.add_argument("--again", action="store_true",
+                    help="time the frame's pose rendered once more from the cache it filled (the "
+                         "render-only frame: gvdp timeline --again)")
     a = ap.parse_args()
     if a.frame < 0:
         fail(f"bad --frame {a.frame} (expected F >= 0)")
@@ -94,6 +98,7 @@ def main():
     if not scenes:
         fail(f"bad --scenes '{a.scenes}' (expected a comma-separated list)")
     os.environ.setdefault("GVDP_WATCHDOG_S", "60")
+    frame = f"frame {a.frame}" + (" again" if a.again else "")
     status = 0
     with tempfile.TemporaryDirectory() as d:
         for scene in scenes:
@@ -102,7 +107,8 @@ def main():
                 for label, path in bins:
                     cmd = [path, "timeline", "--backend", a.backend, "--scheduler", a.scheduler,
                            "--scene", scene, "--movement", a.movement, "--frame", str(a.frame),
-                           "--out", os.path.join(d, "t.png"), *size]
+                           "--out", os.path.join(d, "t.png"), *size,
+                           *(["--again"] if a.again else [])]
                     r = subprocess.run(cmd, capture_output=True, text=True)
                     values = parse_summary(r.stdout) if r.returncode == 0 else None
                     if values is None:
@@ -117,7 +123,7 @@ def main():
                 if not v:
                     continue
                 ms, span, idle = ([x[k] for x in v] for k in range(3))
-                print(f"{scene} {label}: {len(v)} runs, frame {a.frame} {spread(ms, 2, ' ms')}, "
+                print(f"{scene} {label}: {len(v)} runs, {frame} {spread(ms, 2, ' ms')}, "
                       f"span {spread(span, 2, ' ms')}, idle {spread(idle, 1, '%')}", flush=True)
     sys.exit(status)
 
