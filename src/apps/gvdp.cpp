@@ -101,8 +101,8 @@ void addRenderFlags(CLI::App* cmd, RenderFlags& f, bool timelineCommand = false)
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_LOOKAHEAD) + "; 0: off)");
   cmd->add_option("--tail-lookahead", f.tailLookahead,
-                  "pt: at least this lookahead in a frame's tail (at most one ray in 16 live), "
-                  "0.." +
+                  "pt: at least this lookahead in a frame's tail (at most one ray in " +
+                      std::to_string(PT_TAIL_SHARE) + " live), 0.." +
                       std::to_string(MAX_LOOKAHEAD) + " (default " +
                       std::to_string(DEFAULT_TAIL_LOOKAHEAD) + "; 0: --lookahead's)");
   cmd->add_option("--prefetch", f.prefetch,

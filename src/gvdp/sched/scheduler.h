@@ -66,6 +66,13 @@ struct FrameStats {
 constexpr uint32_t DEFAULT_LOOKAHEAD = 2;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
 constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 16;  // pt: see ptTailLookahead
+// A frame's tail: at most one ray in PT_TAIL_SHARE live (pt_body.h: lookaheadPlan). 16 since
+// session 73 (H200, 25 pt cells, one binary against 256, 2 + 3 rounds): FPS x1.010 / x1.007,
+// 1% lows x1.035 / x1.022 (aligned-spheres' walkthrough 609-615 -> 639-663 FPS, its spinning walk
+// 290-296 -> 311), over-production at most 4.1-4.2% -> 5.8%, a cold cache's first frame 153 ->
+// 160 ms; 8: x1.010, x1.024, 6.3%, 168 ms; 32: x1.003, x1.021; 64: x1.005, x1.028. The tail's
+// rule was one in 256 since session 23, when it also raised the lookahead to 8 (an H100).
+constexpr uint32_t PT_TAIL_SHARE = 16;
 
 // pt's idle-time prefetch (pt_prefetch.h): a ray of the predicted next frame per N x N pixels, 0:
 // off. Off by default since session 68: on an H100 (BENCHMARKS.md, "Idle-time prefetch") 4 had made
@@ -109,7 +116,7 @@ struct SchedulerOptions {
   double budgetMs = NO_BUDGET;  // cached schedulers: past it, rays show coarser levels; < 0: none
 };
 
-// pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE = 16 live: pt_body.h,
+// pt's lookahead in a frame's tail (at most one ray in PT_TAIL_SHARE live: pt_body.h,
 // lookaheadPlan, which there also passes the bricks not resident): at least `tailLookahead` bricks,
 // unless the lookahead is off. There the last chains of productions are what is left of the frame.
 // On an H100 (25 pt cells, BENCHMARKS.md, session 23), 8 bricks once one ray in 256 is live gave
@@ -122,7 +129,7 @@ struct SchedulerOptions {
 // Re-swept with the prefetch off (session 69, 3 + 5 rounds): 8 and 32 made random-spheres' frame
 // 12 4-5% longer (5.03-5.09 -> 5.28 ms), 64 FPS x0.975 at 10.0% over-production; --lookahead 4
 // x1.003-1.004, within the spread. Those sweeps ran with the tail at one ray in 256 live; it
-// begins at one in 16 since session 73 (pt_context.h: PT_TAIL_SHARE), where 8 bricks gave FPS
+// begins at one in 16 since session 73 (PT_TAIL_SHARE above), where 8 bricks gave FPS
 // x0.988 and 32 x0.995 at 9.9% over-production (2 rounds).
 inline uint32_t ptTailLookahead(const SchedulerOptions& o) {
   return o.lookahead == 0 || o.lookahead > o.tailLookahead ? o.lookahead : o.tailLookahead;

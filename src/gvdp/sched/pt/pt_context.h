@@ -16,13 +16,6 @@ constexpr int PT_BATCH = 32;                     // rays per render task (a warp
 constexpr int PT_COUNTER_STRIDE = 32;            // counters sit 128 bytes apart (no false sharing)
 constexpr uint32_t PT_LOOKAHEAD_IDS = 1u << 15;  // task ids for the lookahead's claims
 constexpr uint32_t PT_PREFETCH_IDS = 1u << 14;   // task ids for the prefetch's claims
-// A frame's tail: at most one ray in PT_TAIL_SHARE live (PtContext::tailLookahead). 16 since
-// session 73 (H200, 25 pt cells, one binary against 256, 2 + 3 rounds): FPS x1.010 / x1.007,
-// 1% lows x1.035 / x1.022 (aligned-spheres' walkthrough 609-615 -> 639-663 FPS, its spinning walk
-// 290-296 -> 311), over-production at most 4.1-4.2% -> 5.8%, a cold cache's first frame 153 ->
-// 160 ms; 8: x1.010, x1.024, 6.3%, 168 ms; 32: x1.003, x1.021; 64: x1.005, x1.028. The tail's
-// rule was one in 256 since session 23, when it also raised the lookahead to 8 (an H100).
-constexpr uint32_t PT_TAIL_SHARE = 16;
 
 enum PtCounter : int {
   PT_RAY_HEAD,
