@@ -87,7 +87,8 @@ void expectLookaheadChangesNoImage(Backend backend, const std::string& scene, in
 
 // Outside the frame's tail a stopped ray looks ahead only while no production task waits
 // unclaimed (the tasks ring's `ready`), with coarser stand-ins; in the tail, its tail's length
-// whatever the queue, passing the bricks that are not resident.
+// whatever the queue, passing the bricks that are not resident, and only once it has parked (a
+// ray whose park failed marches on at once).
 TEST(PtLookahead, NoneWhileProductionTasksWaitOutsideTheTail) {
   std::vector<uint32_t> counters(PtLayout::COUNTERS, 0);
   PtContext ctx{};
@@ -97,18 +98,23 @@ TEST(PtLookahead, NoneWhileProductionTasksWaitOutsideTheTail) {
   ctx.tailLookahead = 8;
   ctx.tailRays = 100;
   *ctx.counter(PT_LIVE_RAYS) = 1000;
-  auto plan = [&] {
-    LookaheadPlan p = lookaheadPlan(ctx);
+  auto plan = [&](bool parked = true) {
+    LookaheadPlan p = lookaheadPlan(ctx, parked);
     return std::pair{p.bricks, p.standInLevels};
   };
   EXPECT_EQ(plan(), std::pair(2u, STAND_INS_ANY));
   *ctx.counter(PT_TASK_READY) = 3;
   EXPECT_EQ(plan(), std::pair(0u, STAND_INS_ANY))
       << "tasks wait: no worker is free for more claims";
+  EXPECT_EQ(plan(false), std::pair(0u, STAND_INS_ANY));
   *ctx.counter(PT_LIVE_RAYS) = 100;
   EXPECT_EQ(plan(), std::pair(8u, 0)) << "the frame's tail";
+  EXPECT_EQ(plan(false), std::pair(0u, 0)) << "a tail ray whose park failed marches on";
   *ctx.counter(PT_TASK_READY) = 0;
   EXPECT_EQ(plan(), std::pair(8u, 0));
+  EXPECT_EQ(plan(false), std::pair(0u, 0));
+  *ctx.counter(PT_LIVE_RAYS) = 1000;
+  EXPECT_EQ(plan(false), std::pair(2u, STAND_INS_ANY)) << "outside the tail, parked or not";
 }
 
 TEST(PtCpu, LookaheadChangesWhatIsProducedNeverTheImage) {

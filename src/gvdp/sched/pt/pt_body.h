@@ -63,13 +63,21 @@ namespace gvdp::detail {
 // H200, 25 pt cells, one binary with and without, 2 and 3 rounds: FPS x1.001 / x1.010, 1% lows
 // x0.986 / x1.008, every random-spheres cell +2-5%, its walkthrough frame 12 5.2 -> 5.0 ms
 // (BENCHMARKS.md, session 54).
+//
+// In the tail only a ray that parked looks ahead: one whose park failed (its brick was published
+// while it claimed it) marches on at once, since its lookahead walked the ray's own next bricks
+// while the ray waited for it (57-60 us for a tail lookahead in random-spheres' walkthrough frame
+// 12, against 7-12 us for the stop's claim and park, H200, session 75), and a parked ray looks
+// ahead off its path. H200: that frame 5.02 -> 4.93 ms, idle 9.9 -> 8.8%; 25 pt cells FPS
+// x1.004, 1% lows x1.008, every random-spheres cell's FPS up (BENCHMARKS.md session 75).
 struct LookaheadPlan {
   uint32_t bricks;
   int standInLevels;  // how far above a brick its stand-in may be (cache/lookahead.h)
 };
 
-GVDP_HD GVDP_INLINE LookaheadPlan lookaheadPlan(const PtContext& ctx) {
-  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays) return {ctx.tailLookahead, 0};
+GVDP_HD GVDP_INLINE LookaheadPlan lookaheadPlan(const PtContext& ctx, bool parked) {
+  if (loadRelaxed32(ctx.counter(PT_LIVE_RAYS)) <= ctx.tailRays)
+    return {parked ? ctx.tailLookahead : 0u, 0};
   return {loadRelaxed32(ctx.tasks.ready) == 0 && loadRelaxed32(ctx.counter(PT_OPEN)) == 0
               ? ctx.lookahead
               : 0u,
@@ -109,7 +117,8 @@ struct OneLane {
 // tail took longer than its brick's production: 73-104 us for a tail lookahead of 14-17 bricks in
 // random-spheres' walkthrough frames 10-14, against ~28 us for a production. Parking first: 25 pt
 // cells FPS x1.002-1.005, every random-spheres cell +1-3% in three calls, its frame 12 5.09-5.15
-// -> 5.00-5.02 ms, the same images (H200, BENCHMARKS.md session 70).
+// -> 5.00-5.02 ms, the same images (H200, BENCHMARKS.md session 70). In the frame's tail a ray
+// whose park failed does not look ahead (lookaheadPlan).
 template <class Pool, class Park = ParkOne, class Lanes = OneLane>
 GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool relaunched,
                       Park park = {}, Lanes lanes = {}) {
@@ -135,7 +144,7 @@ GVDP_HD bool ptRunRay(const PtContext& ctx, const Pool& pool, int pixel, bool re
     const bool looks = again && park.leads(access.stopEntry);
     live = !park(ctx, p, access.stopEntry);
     if (looks) {  // on this lane's copy of the state: a parked ray may run elsewhere
-      LookaheadPlan plan = lookaheadPlan(ctx);
+      LookaheadPlan plan = lookaheadPlan(ctx, !live);
       lookAhead<PoolReads::Coherent>(ray, f.lod, s, ctx.cache, pool,
                                      StartAhead::lookahead(ctx, plan.bricks), plan.bricks,
                                      plan.standInLevels);
