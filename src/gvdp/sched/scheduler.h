@@ -65,7 +65,14 @@ struct FrameStats {
 // produced: 2 keeps it under the 10% the issue allows. Before, 4 had made perlin 4-14% slower.
 constexpr uint32_t DEFAULT_LOOKAHEAD = 2;
 constexpr uint32_t MAX_LOOKAHEAD = 64;
-constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 16;  // pt: see ptTailLookahead
+// pt's lookahead in a frame's tail (ptTailLookahead). 24 since session 76: with the tail's rule
+// that only a parked ray looks ahead (pt_body.h: lookaheadPlan), H200, 25 pt cells against 16, two
+// calls (3 and 4 rounds): FPS x1.001 / x1.002, 1% lows x1.011 / x1.012, random-spheres'
+// walkthrough frame 12 4.86-4.87 -> 4.76-4.77 ms and its idle 9.1-9.2% -> 6.0-7.1%, perlin's
+// 1.81-1.85 -> 1.82-1.83 ms, over-production at most 5.7% -> 7.6-8.0%; 32: FPS x0.996 / x1.003,
+// 1% lows x1.012 / x1.012, frame 12 4.66-4.67 ms, idle 5.5-5.9%, over-production 8.9-9.1%, too
+// near the 10% issue 14 allows (BENCHMARKS.md session 76).
+constexpr uint32_t DEFAULT_TAIL_LOOKAHEAD = 24;
 // A frame's tail: at most one ray in PT_TAIL_SHARE live (pt_body.h: lookaheadPlan). 16 since
 // session 73 (H200, 25 pt cells, one binary against 256, 2 + 3 rounds): FPS x1.010 / x1.007,
 // 1% lows x1.035 / x1.022 (aligned-spheres' walkthrough 609-615 -> 639-663 FPS, its spinning walk

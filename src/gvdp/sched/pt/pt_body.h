@@ -68,8 +68,9 @@ namespace gvdp::detail {
 // while it claimed it) marches on at once, since its lookahead walked the ray's own next bricks
 // while the ray waited for it (57-60 us for a tail lookahead in random-spheres' walkthrough frame
 // 12, against 7-12 us for the stop's claim and park, H200, session 75), and a parked ray looks
-// ahead off its path. H200: that frame 5.02 -> 4.93 ms, idle 9.9 -> 8.8%; 25 pt cells FPS
-// x1.004, 1% lows x1.008, every random-spheres cell's FPS up (BENCHMARKS.md session 75).
+// ahead off its path. H200, main against the rule: that frame 5.03 -> 4.86 ms, idle 10.8 -> 8.9%;
+// 25 pt cells FPS x1.004, 1% lows x1.005, every random-spheres cell's FPS up (BENCHMARKS.md
+// session 75).
 struct LookaheadPlan {
   uint32_t bricks;
   int standInLevels;  // how far above a brick its stand-in may be (cache/lookahead.h)
