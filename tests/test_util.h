@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "gvdp/base/gpu.h"
@@ -24,11 +25,16 @@ inline std::unique_ptr<Scheduler> schedulerFor(const SequenceOptions& o) {
   return makeScheduler(o.scheduler, builtinProducerKernels(findScene(o.scene).world));
 }
 
-// The gvdp binary under test: $GVDP_BIN when set (binaries carried to another machine), else the
-// one built beside the tests.
+// The gvdp binary under test: $GVDP_BIN when set, else the one built beside the tests, else (tests
+// carried to another machine without their build folder, scripts/carry.sh) the gvdp in the test
+// binary's own folder. None there: the build's path, whose runs then fail naming it.
 inline std::string gvdpBinary() {
-  const char* env = std::getenv("GVDP_BIN");
-  return env ? env : GVDP_BINARY;
+  if (const char* env = std::getenv("GVDP_BIN")) return env;
+  std::error_code ec;
+  if (std::filesystem::exists(GVDP_BINARY, ec)) return GVDP_BINARY;
+  std::filesystem::path beside = std::filesystem::read_symlink("/proc/self/exe", ec);
+  beside = beside.parent_path() / "gvdp";
+  return !ec && std::filesystem::exists(beside, ec) ? beside.string() : GVDP_BINARY;
 }
 
 // A shell command's exit status and output (stdout and stderr together).
