@@ -43,6 +43,7 @@ struct WarpSpan {
   uint64_t start, end;
   TaskKind kind;
   bool open;
+  bool fresh;  // open, and no task done in it yet
 
   __device__ void begin(const TimelineView& timeline, TaskKind k) {
     if (open && k == kind) return;
@@ -50,8 +51,20 @@ struct WarpSpan {
     kind = k;
     start = clockNanoseconds();
     open = true;
+    fresh = true;
   }
-  __device__ void taskDone() { end = clockNanoseconds(); }
+  __device__ void taskDone() {
+    end = clockNanoseconds();
+    fresh = false;
+  }
+  // A round that did nothing (a helper that found every chunk claimed): its time is not work. A
+  // span it opened is dropped; one open before it ends at its last task.
+  __device__ void nothingDone(const TimelineView& timeline) {
+    if (open && fresh)
+      open = false;
+    else
+      close(timeline);
+  }
   __device__ void close(const TimelineView& timeline) {
     if (!open) return;
     uint16_t sm = static_cast<uint16_t>(smId());
@@ -191,17 +204,18 @@ __device__ inline uint32_t workerOf(int warp) {
 // Claims and computes chunks of worker `owner`'s production until none is left, then publishes
 // them (samples, nonEmpty, `done`) at once. Until then the owner cannot close the production, so
 // every chunk the warp claims is of the same one: one acquire and one key load a call, and each
-// next claim is in flight while the chunk before it is computed.
+// next claim is in flight while the chunk before it is computed. Returns the chunks it computed
+// (0: every chunk was claimed before it came).
 template <class P>
-__device__ void produceChunks(const P& producer, const PtProductions& pp, uint32_t owner,
-                              int lane) {
+__device__ uint32_t produceChunks(const P& producer, const PtProductions& pp, uint32_t owner,
+                                  int lane) {
   uint32_t c = 0;
   if (lane == 0) {
     c = atomicAdd(&pp.next[owner], 1u);
     __threadfence();  // acquire: the key the owner wrote before opening the production
   }
   c = __shfl_sync(FULL_MASK, c, 0);
-  if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return;
+  if (c >= static_cast<uint32_t>(PRODUCE_CHUNKS)) return 0;
   __syncwarp();  // lane 0's acquire before every lane's read of the key
   const BrickKey key = loadBrickKey(&pp.key[owner]);
   uint32_t chunks = 0;
@@ -233,6 +247,7 @@ __device__ void produceChunks(const P& producer, const PtProductions& pp, uint32
     __threadfence();  // release: nonEmpty before `done`
     atomicAdd(&pp.done[owner], chunks);
   }
+  return chunks;
 }
 
 // The start of Algorithm 2 by warp `warp`: task `id`'s key and counters in its worker's production,
@@ -483,10 +498,15 @@ struct WarpWorker {
       id = fromLane0([&] { return shared.ownTask; });
       chunks = fromLane0([&] { return shared.ownChunks ? 1u : 0u; }) != 0;
     }
-    if (!own || chunks) produceChunks(producer, ctx.productions, owner, lane);
+    const uint32_t computed =
+        !own || chunks ? produceChunks(producer, ctx.productions, owner, lane) : 0u;
     if (own) {
       if (lane == 0) shared.ownTask = PT_NO_TASK;
       closeProductionTask(ctx, pool, producer, id, chunks, warp(), lane);
+    } else if (computed == 0) {  // every chunk was claimed: a poll, not work, on the timeline
+      if (timed()) shared.span.nothingDone(ctx.frame.timeline);
+      backoff = PT_SHORTEST_SLEEP;  // (as worked(): such a warp polls again at once)
+      return;
     }
     worked();
   }
