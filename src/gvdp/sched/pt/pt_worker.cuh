@@ -503,12 +503,8 @@ struct WarpWorker {
     if (own) {
       if (lane == 0) shared.ownTask = PT_NO_TASK;
       closeProductionTask(ctx, pool, producer, id, chunks, warp(), lane);
-    } else if (computed == 0) {  // every chunk was claimed: a poll, not work, on the timeline
-      if (timed()) shared.span.nothingDone(ctx.frame.timeline);
-      backoff = PT_SHORTEST_SLEEP;  // (as worked(): such a warp polls again at once)
-      return;
     }
-    worked();
+    worked(own || computed != 0);  // (not: every chunk was claimed before it came)
   }
   __device__ uint32_t claimPrefetch() const {
     return fromLane0([&] { return claimPrefetchItems(ctx); });
@@ -532,8 +528,15 @@ struct WarpWorker {
     if (timed()) shared.span.close(ctx.frame.timeline);
   }
 
-  __device__ void worked() {
-    if (timed()) shared.span.taskDone();
+  // A round that found work: the warp polls again at once. One that did none (`done` false: a
+  // helper that found every chunk claimed) is a poll, not work, on the timeline.
+  __device__ void worked(bool done = true) {
+    if (timed()) {
+      if (done)
+        shared.span.taskDone();
+      else
+        shared.span.nothingDone(ctx.frame.timeline);
+    }
     backoff = PT_SHORTEST_SLEEP;
   }
   __device__ void begin(TaskKind k) {
